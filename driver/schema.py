@@ -9,7 +9,8 @@ SUMMARY_COLUMNS = [
     "cont", "maxit", "tol", "ndof", "iterations", "factorizations", "status", "residual",
     "p0_fe", "p0_hertz", "err_p0", "p0_point", "F_fe", "F_hertz", "err_F",
     "a_fe", "a_hertz", "err_a", "max_penetration", "penetration_over_d",
-    "kpen_critical", "t_mesh", "t_solve", "t_total",
+    "kpen_critical", "t_mesh", "t_assemble", "t_solve", "t_factor", "t_resolve",
+    "t_linear_one", "t_total",
 ]
 
 # added by the driver to every row of a study CSV

@@ -67,8 +67,11 @@ def stability_study(quick: bool) -> list[Case]:
 
 def speed_study(quick: bool) -> list[Case]:
     if quick:
-        return grid(order=[1, 2], n=[4, 8, 16], kpen=[1e8])
-    return (grid(order=[1, 2], n=[4, 8, 16, 32, 64, 128], kpen=[1e5, 1e8])
+        return grid(order=[1, 2], n=[4, 8, 16], kpen=[1e8]) + grid(method=["auglag"], n=[8, 16])
+    return (grid(order=[1, 2], n=[4, 8, 16, 32, 64], kpen=[1e5, 1e8])
+            + grid(order=[1], n=[128], kpen=[1e5, 1e8])
+            + grid(method=["auglag"], n=[4, 8, 16, 32, 64])
+            + grid(n=[8, 16, 32, 64], kpen=[1e3, 1e4])
             + grid(method=["fixedpoint"], n=[8, 16], kpen=[30.0]))
 
 

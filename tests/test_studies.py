@@ -59,7 +59,11 @@ def test_newton_iteration_counts_stay_bounded(studies):
     for frame in frames:
         p2 = frame[(frame["method"] == "newton") & (frame["order"] == 2)]
         assert (p2["status"] == "converged").all()
-        assert p2["iterations"].max() <= 10, p2[["case_id", "iterations"]]
+        # a small clamped domain (L < 100 a) moves the contact edge away from
+        # the Hertz-zone initial guess: more iterations, still bounded
+        usual = p2["L"] >= 100
+        assert p2[usual]["iterations"].max() <= 10, p2[["case_id", "iterations"]]
+        assert p2["iterations"].max() <= 20, p2[["case_id", "iterations"]]
 
 
 def test_fixed_point_limit_matches_theory_and_does_not_depend_on_the_mesh(studies):
