@@ -10,7 +10,8 @@ SUMMARY_COLUMNS = [
     "p0_fe", "p0_hertz", "err_p0", "p0_point", "F_fe", "F_hertz", "err_F",
     "a_fe", "a_hertz", "err_a", "max_penetration", "penetration_over_d",
     "kpen_critical", "t_mesh", "t_assemble", "t_solve", "t_factor", "t_resolve",
-    "t_linear_one", "t_total",
+    "t_linear_one", "t_total", "accuracy_target", "accuracy_predicted",
+    "warnings",
 ]
 
 # added by the driver to every row of a study CSV

@@ -133,7 +133,8 @@ BAD_INPUTS = [
     (["-omega", "2.5"], "-omega"), (["-L", "5"], "-L"), (["-L", "inf"], "-L"),
     (["-kpn", "1e5"], "-kpn"), (["-kpen"], "-kpen"), (["-kpen", "1e5", "-kpen", "1e6"], "-kpen"),
     (["-maxit", "0"], "-maxit"), (["-tol", "1"], "-tol"), (["-cont", "2"], "-cont"),
-    (["-out", "/proc/forbidden"], "-out"),
+    (["-out", "/proc/forbidden"], "-out"), (["-accuracy", "0.5"], "-accuracy"),
+    (["-accuracy", "0.01", "-n", "8"], "-n"),
 ]
 
 
@@ -144,3 +145,14 @@ def test_bad_input_is_rejected_with_a_message_naming_the_option(solve, args, opt
     errors = [ln for ln in run.output.splitlines() if ln.startswith("hertz.edp: error:")]
     assert len(errors) == 1 and option in errors[0], run.output
     assert not run.outdir.exists() or not any(run.outdir.iterdir())  # nothing written
+
+
+@pytest.mark.parametrize("target", ["0.01", "0.003"])
+def test_accuracy_preset_reaches_its_target(solve, target):
+    run = solve("-accuracy", target)
+    assert run.exit_code == 0, run.output
+    s = run.summary
+    achieved = max(abs(s["err_p0"]), abs(s["err_F"]), abs(s["err_a"]))
+    assert achieved <= float(target), (achieved, s["accuracy_predicted"])
+    assert s["accuracy_predicted"] <= float(target)
+    assert s["order"] == 2 and "achieved max error" in run.output
