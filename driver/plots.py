@@ -55,10 +55,16 @@ def accuracy_vs_speed(tables: dict, path: Path) -> Path:
                    alpha=0.75, label=f"{method} P{order}", edgecolors="none")
     front = pareto(rows, "wall_time", "max_err")
     ax.plot(front["wall_time"], front["max_err"] * 100, "k-", lw=1, label="Pareto front")
+    last = None
     for _, row in front.iterrows():
-        ax.annotate(f"P{row['order']} n={row['n']} k={row['kpen']:.0e}",
-                    (row["wall_time"], row["max_err"] * 100), fontsize=7,
-                    xytext=(4, 3), textcoords="offset points")
+        point = (row["wall_time"], row["max_err"] * 100)
+        # label points that stand apart (log distance), so labels do not overlap
+        if last is not None and abs(math.log(point[0] / last[0])) < 0.45 \
+                and abs(math.log(point[1] / last[1])) < 0.6:
+            continue
+        ax.annotate(f"{row['method']} P{row['order']} n={row['n']} k={row['kpen']:.1e}", point,
+                    fontsize=7, xytext=(5, 2), textcoords="offset points")
+        last = point
     ax.set(xscale="log", yscale="log", xlabel="wall time per case [s]",
            ylabel="max |relative error| of p0, F, a [%]",
            title="Accuracy against speed (sphere, every converged case)")
@@ -152,11 +158,16 @@ def _grid(ax, frame, xcol, ycol, text):
         ax.add_patch(plt.Rectangle((i - 0.5, j - 0.5), 1, 1,
                                    color=STATUS_COLORS.get(row["status"], "white"), alpha=0.85))
         ax.text(i, j, text(row), ha="center", va="center", fontsize=7)
-    ax.set_xticks(range(len(xs)), [f"{x:.0e}" if isinstance(x, float) else x for x in xs],
-                  rotation=45, fontsize=7)
+    ax.set_xticks(range(len(xs)), [_tick(x) for x in xs], rotation=45, fontsize=7)
     ax.set_yticks(range(len(ys)), [str(y) for y in ys], fontsize=8)
     ax.set_xlim(-0.5, len(xs) - 0.5)
     ax.set_ylim(-0.5, len(ys) - 0.5)
+
+
+def _tick(value) -> str:
+    if isinstance(value, (int, float, np.number)):
+        return f"{value:.0e}" if value >= 1e4 else f"{value:g}"
+    return str(value)
 
 
 def pressure_profiles(runs: dict, path: Path) -> Path:

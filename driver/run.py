@@ -59,24 +59,24 @@ def run_case(case: Case, workdir: Path, timeout: float, study: str = "",
     log_path = workdir / "freefem.log"
     start = time.perf_counter()
     status, error = None, ""
-    with open(log_path, "w") as log:
-        log.write(" ".join(cmd) + "\n")
-        log.flush()
-        # own process group: a timeout kills FreeFEM and anything it started
-        proc = subprocess.Popen(cmd, cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
-                                env=freefem_env(), start_new_session=True)
+    # output through a pipe: communicate() returns as soon as FreeFEM exits,
+    # where wait(timeout) on a file-backed process polls (up to 50 ms late)
+    proc = subprocess.Popen(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            env=freefem_env(), start_new_session=True)
+    if procs is not None:
+        procs.add(proc)
+    try:
+        output, _ = proc.communicate(timeout=timeout)
+        exit_code = proc.returncode
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)  # its own process group: nothing survives
+        output, _ = proc.communicate()
+        exit_code, status, error = proc.returncode, "timeout", f"no result after {timeout:g} s"
+    finally:
         if procs is not None:
-            procs.add(proc)
-        try:
-            exit_code = proc.wait(timeout=timeout)
-        except subprocess.TimeoutExpired:
-            os.killpg(proc.pid, signal.SIGKILL)
-            proc.wait()
-            exit_code, status, error = proc.returncode, "timeout", f"no result after {timeout:g} s"
-        finally:
-            if procs is not None:
-                procs.discard(proc)
+            procs.discard(proc)
     wall = time.perf_counter() - start
+    log_path.write_bytes(" ".join(cmd).encode() + b"\n" + (output or b""))
 
     row = {col: math.nan for col in STUDY_COLUMNS}
     row.update(case.as_dict())

@@ -3,6 +3,7 @@ so a full sweep after a quick one only runs the missing cases."""
 from __future__ import annotations
 
 import itertools
+import math
 import json
 import tomllib
 from dataclasses import fields
@@ -130,10 +131,12 @@ def _value(path: Path, key: str, value):
     if key not in _FIELDS:
         raise SpecError(f"spec {path}: unknown parameter '{key}'; known: {', '.join(_FIELDS)}")
     want = _TYPES.get(key, float)
-    if isinstance(value, bool) or (want is str) != isinstance(value, str):
+    ok = isinstance(value, str) if want is str else \
+        isinstance(value, (int, float)) and not isinstance(value, bool)
+    if not ok:
         raise SpecError(f"spec {path}: {key} must be a {want.__name__}, got {value!r}")
     if want is int:
-        if not float(value).is_integer():
+        if not math.isfinite(value) or not float(value).is_integer():
             raise SpecError(f"spec {path}: {key} must be an integer, got {value!r}")
         return int(value)
     if want is float:

@@ -1,0 +1,36 @@
+"""The report: charts exist, and the best-configuration table matches the CSV data."""
+import re
+import shutil
+
+import pandas as pd
+
+from driver import RESULTS_DIR
+from driver.plots import max_error
+from driver.report import LEVELS, write_report
+
+
+def test_report_charts_and_table_match_the_data(studies, tmp_path):
+    for name in studies:
+        shutil.copy(RESULTS_DIR / f"{name}.csv", tmp_path / f"{name}.csv")
+    report = write_report(tmp_path)
+    text = report.read_text()
+    images = re.findall(r"!\[[^\]]*\]\(([^)]+\.png)\)", text)
+    assert len(images) >= 9
+    for image in images:
+        data = (tmp_path / image).read_bytes()
+        assert data.startswith(b"\x89PNG") and len(data) > 20_000, image
+
+    rows = pd.concat(studies.values(), ignore_index=True)
+    rows = rows[(rows["status"] == "converged") & (rows["model"] == "axi")].drop_duplicates("case_id")
+    rows = rows.assign(max_err=max_error(rows))
+    table = [ln for ln in text.splitlines() if ln.startswith("| ") and "%" in ln.split("|")[1]]
+    assert len(table) == len(LEVELS)
+    for line, level in zip(table, LEVELS):
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        case_id = cells[-1].strip("`")
+        row = rows.set_index("case_id").loc[case_id]
+        assert row["max_err"] <= level
+        assert float(cells[6]) == round(row["wall_time"], 3)
+        assert cells[8] == f"{row['err_p0']:+.4%}" and cells[10] == f"{row['err_a']:+.4%}"
+        # nothing faster reaches the same level
+        assert rows[rows["max_err"] <= level]["wall_time"].min() == row["wall_time"]
