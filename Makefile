@@ -2,7 +2,7 @@
 PYTHON ?= python3
 JOBS ?= $(shell nproc)
 
-.PHONY: all setup run sweep sweep-quick report bench test lint clean
+.PHONY: all setup run sweep rerun sweep-quick report bench test lint clean
 
 all: setup sweep                  ## set up, run every study, write the report
 
@@ -14,6 +14,10 @@ run:                              ## the seed case, P2, with files in results/de
 
 sweep:                            ## every study (resumable), then the report
 	$(PYTHON) -m driver sweep --all --jobs $(JOBS)
+	$(PYTHON) -m driver report
+
+rerun:                            ## every study recomputed from scratch (--force), then the report
+	$(PYTHON) -m driver sweep --all --force --jobs $(JOBS)
 	$(PYTHON) -m driver report
 
 sweep-quick:                      ## the small subset used by the tests and CI

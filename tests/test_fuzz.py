@@ -90,3 +90,30 @@ def test_random_spec_files_define_cases_or_name_the_problem(grid, base):
         for case in cases:
             assert isinstance(case.n, int) and isinstance(case.model, str)
             assert all(math.isfinite(getattr(case, f)) for f in ("kpen", "E", "L"))
+
+
+cli_tokens = st.sampled_from(["run", "sweep", "report", "bench", "--kpen", "--order", "--n", "--jobs",
+                              "--timeout", "--quick", "--all", "--spec", "--force", "kpen", "mesh",
+                              "nosuch", "-1", "0", "nan", "inf", "1e5", "2", "x", ""])
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(cli_tokens, max_size=6))
+def test_random_command_lines_parse_or_exit_with_a_usage_error(tokens):
+    import contextlib
+    import io
+
+    from driver.cli import build_parser
+    err = io.StringIO()
+    try:
+        with contextlib.redirect_stderr(err):
+            args = build_parser().parse_args(tokens)
+    except SystemExit as exc:
+        assert exc.code in (0, 2)  # 0: --help; 2: usage error with a message
+        if exc.code == 2:
+            assert "error:" in err.getvalue()
+        return
+    for name in ("jobs", "timeout"):
+        value = getattr(args, name, None)
+        if value is not None:
+            assert value > 0 and math.isfinite(value)
