@@ -156,3 +156,13 @@ def test_accuracy_preset_reaches_its_target(solve, target):
     assert achieved <= float(target), (achieved, s["accuracy_predicted"])
     assert s["accuracy_predicted"] <= float(target)
     assert s["order"] == 2 and "achieved max error" in run.output
+
+
+def test_fixed_point_limit_scales_with_estar_over_a_not_with_the_mesh(solve):
+    def limit(*args):
+        return solve("-method", "fixedpoint", "-kpen", "1", *args).summary["kpen_critical"]
+    base = limit("-n", "8")
+    assert limit("-n", "16") == pytest.approx(base, rel=0.01)        # h halves: unchanged
+    assert limit("-n", "8", "-E", "100") == pytest.approx(10 * base, rel=0.01)  # x E*
+    # d x4 doubles a: the limit halves (mu is the compliance of the smoothest mode, ~ a/E*)
+    assert limit("-n", "8", "-d", "0.08") == pytest.approx(base / 2, rel=0.03)
