@@ -57,10 +57,11 @@ class Case:
 
     @property
     def contact_scale(self) -> float:
-        """The length hertz.edp sizes the mesh with (Hertz a for the sphere, an estimate in plane)."""
+        """The length hertz.edp sizes the mesh with: Hertz a for the sphere, the
+        estimate of edp/lib/hertz.idp (planeHalfWidthEstimate) in plane strain."""
         if self.model == "axi":
             return math.sqrt(self.R * self.d)
-        return math.sqrt(2 * self.R * self.d / (math.log(2 * self.L) + 0.5))
+        return math.sqrt(2 * self.R * self.d / (math.log(2 * self.L) - 0.1))
 
     def scaled_kpen(self, gamma: float) -> float:
         """kpen = gamma E*/h with h = a/n, the mesh-consistent penalty."""

@@ -165,3 +165,12 @@ def test_cli_help_lists_every_option():
     out = cli("sweep", "--help").stdout
     for option in ("--all", "--quick", "--spec", "--jobs", "--timeout", "--force"):
         assert option in out
+
+
+def test_contact_scale_matches_the_mesh_scale_of_hertz_edp(tmp_path):
+    # n elements per contact scale: the finest element is scale/(4n) in both
+    for case in (Case(n=4, L=50.0), Case(model="plane", n=4, L=50.0)):
+        row = run_case(case.with_(kpen=case.scaled_kpen(100)), tmp_path / case.model, timeout=120)
+        assert row["status"] == "converged"
+        # scaled_kpen used the same contact scale as hertz.edp: a_fe is within 5% of it
+        assert row["a_fe"] == pytest.approx(case.contact_scale, rel=0.05)
