@@ -13,9 +13,8 @@ from pathlib import Path
 
 import pandas as pd
 
-from driver import HERTZ_EDP
 from driver.cases import Case
-from driver.run import check_freefem, freefem_env, run_case
+from driver.run import freefem_command, freefem_env, run_case
 
 CONFIGS = {
     "default (P2, n=16, kpen=1e5)": Case(),
@@ -27,7 +26,7 @@ CONFIGS = {
 
 
 def direct_run(case: Case, outdir: Path) -> tuple[float, dict]:
-    cmd = [check_freefem(), "-nw", "-v", "0", str(HERTZ_EDP), *case.args(), "-out", str(outdir)]
+    cmd = freefem_command(case.args(), outdir)
     start = time.perf_counter()
     subprocess.run(cmd, capture_output=True, env=freefem_env(), check=False)
     wall = time.perf_counter() - start

@@ -16,7 +16,7 @@ AXIS_CASE = Case(kpen=1e8)
 def figure_runs(results_dir: Path) -> dict[str, Path]:
     """Run (or reuse) the figure cases; return their work directories by case id."""
     cases = PROFILE_CASES + SEED_FIGURE_CASES + [AXIS_CASE]
-    frame = sweep("figures", cases, results_dir, jobs=2, timeout=600, progress=False)
+    sweep("figures", cases, results_dir, jobs=2, timeout=600, progress=False)
     workroot = results_dir / "runs" / "figures"
     missing = [c for c in cases if not (workroot / c.case_id / "profile.csv").exists()]
     if missing:  # CSV rows kept but work files deleted: rerun them

@@ -25,6 +25,13 @@ def max_error(frame: pd.DataFrame) -> pd.Series:
     return frame[list(ERRORS)].abs().max(axis=1, skipna=True)
 
 
+def sphere_cases(tables: dict) -> pd.DataFrame:
+    """Converged sphere cases of every study, once each, with their max |error|."""
+    rows = pd.concat(tables.values(), ignore_index=True)
+    rows = rows[(rows["status"] == "converged") & (rows["model"] == "axi")].drop_duplicates("case_id")
+    return rows.assign(max_err=max_error(rows))
+
+
 def _save(fig, path: Path) -> Path:
     fig.tight_layout()
     fig.savefig(path, dpi=110)
@@ -44,10 +51,7 @@ def pareto(frame: pd.DataFrame, x: str, y: str) -> pd.DataFrame:
 
 
 def accuracy_vs_speed(tables: dict, path: Path) -> Path:
-    rows = pd.concat(tables.values(), ignore_index=True)
-    rows = rows[(rows["status"] == "converged") & (rows["model"] == "axi")].copy()
-    rows["max_err"] = max_error(rows)
-    rows = rows.drop_duplicates("case_id")
+    rows = sphere_cases(tables)
     fig, ax = plt.subplots(figsize=(8, 5.5))
     for (method, order), group in rows.groupby(["method", "order"]):
         color, marker = STYLE.get((method, order), ("k", "x"))
@@ -177,7 +181,7 @@ def pressure_profiles(runs: dict, path: Path) -> Path:
         for case, color in zip([c for c in PROFILE_CASES if c.order == order],
                                ("#1565c0", "#2e7d32", "#c62828")):
             prof = load(runs[case.case_id], "profile")
-            a = math.sqrt(case.R * case.d)
+            a = case.contact_scale
             p0 = prof["p_hertz"].max()
             if not hertz_drawn:
                 ax.plot(prof["r"] / a, prof["p_hertz"] / p0, "k-", lw=2, label="Hertz")
@@ -222,7 +226,7 @@ def seed_figure(runs: dict, path: Path) -> Path:
     colors = ("#90caf9", "#42a5f5", "#1565c0", "#0d47a1")
     for case, color in zip(SEED_FIGURE_CASES, colors):
         prof = load(runs[case.case_id], "profile")
-        a = math.sqrt(case.R * case.d)
+        a = case.contact_scale
         ax.plot(prof["r"] / a, prof["u_z"] / case.d, "-", color=color, label=f"u_z, kpen={case.kpen:.0e}")
         ax.plot(prof["r"] / a, prof["gap"] / case.d, "--", color=color, lw=1,
                 label=f"gap h - u_z, kpen={case.kpen:.0e}")

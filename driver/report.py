@@ -26,9 +26,7 @@ def load_tables(results_dir: Path) -> dict[str, pd.DataFrame]:
 
 def best_configurations(tables: dict) -> pd.DataFrame:
     """Fastest converged sphere case whose max |error| over p0, F, a is within each level."""
-    rows = pd.concat(tables.values(), ignore_index=True)
-    rows = rows[(rows["status"] == "converged") & (rows["model"] == "axi")].drop_duplicates("case_id")
-    rows = rows.assign(max_err=plots.max_error(rows))
+    rows = plots.sphere_cases(tables)
     best = []
     for level in LEVELS:
         within = rows[rows["max_err"] <= level]

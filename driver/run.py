@@ -49,13 +49,18 @@ def check_freefem() -> str:
     return path
 
 
+def freefem_command(args: list[str], outdir: Path) -> list[str]:
+    """The one way hertz.edp is called: no window, quiet, files in outdir."""
+    return [check_freefem(), "-nw", "-v", "0", str(HERTZ_EDP), *args, "-out", str(outdir)]
+
+
 def run_case(case: Case, workdir: Path, timeout: float, study: str = "",
              procs: set | None = None) -> dict:
     """Run hertz.edp; always return a full row, whatever happened."""
     workdir.mkdir(parents=True, exist_ok=True)
     for name in ("summary.csv", "profile.csv", "history.csv", "axis.csv"):
         (workdir / name).unlink(missing_ok=True)
-    cmd = [check_freefem(), "-nw", "-v", "0", str(HERTZ_EDP), *case.args(), "-out", str(workdir)]
+    cmd = freefem_command(case.args(), workdir)
     log_path = workdir / "freefem.log"
     start = time.perf_counter()
     status, error = None, ""

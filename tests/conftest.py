@@ -9,8 +9,8 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from driver import HERTZ_EDP, RESULTS_DIR
-from driver.run import freefem_env
+from driver import RESULTS_DIR
+from driver.run import freefem_command, freefem_env
 from driver.studies import STUDIES
 from driver.sweep import sweep
 
@@ -31,7 +31,7 @@ class Solve:
 
 @functools.lru_cache(maxsize=None)
 def _solve(args: tuple[str, ...], outdir: str) -> Solve:
-    proc = subprocess.run(["FreeFem++", "-nw", "-v", "0", str(HERTZ_EDP), *args, "-out", outdir],
+    proc = subprocess.run(freefem_command(list(args), Path(outdir)),
                           capture_output=True, text=True, env=freefem_env(), timeout=600)
     return Solve(proc.returncode, proc.stdout + proc.stderr, Path(outdir))
 

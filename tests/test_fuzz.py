@@ -8,8 +8,7 @@ import pandas as pd
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from driver import HERTZ_EDP
-from driver.run import freefem_env
+from driver.run import freefem_command, freefem_env
 from driver.studies import SpecError, load_spec
 
 NUMERIC = ["-kpen", "-E", "-nu", "-R", "-d", "-omega", "-L", "-n", "-order", "-maxit", "-tol"]
@@ -35,7 +34,7 @@ def test_random_options_give_a_result_or_a_named_error(opts, drop_last_value):
     if drop_last_value:
         args = args[:-1]  # a missing value
     with tempfile.TemporaryDirectory() as out:
-        proc = subprocess.run(["FreeFem++", "-nw", "-v", "0", str(HERTZ_EDP), *args, "-out", out],
+        proc = subprocess.run(freefem_command(args, Path(out)),
                               capture_output=True, text=True, env=freefem_env(), timeout=300)
         errors = [ln for ln in proc.stdout.splitlines() if ln.startswith("hertz.edp: error:")]
         if proc.returncode == 2:

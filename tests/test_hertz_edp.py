@@ -112,6 +112,8 @@ def test_augmented_lagrangian_removes_penetration(solve):
     assert s["status"] == "converged"
     assert s["penetration_over_d"] < 1e-6
     assert abs(s["err_F"]) < 0.005 and abs(s["err_p0"]) < 0.005
+    # the pointwise pressure includes the multiplier: <lambda + kpen (u_z - h)>_+
+    assert s["p0_point"] == pytest.approx(s["p0_fe"], rel=0.01)
 
 
 def test_vtk_file_holds_the_fields(solve, tmp_path):
