@@ -6,9 +6,10 @@ tests/test_driver.py checks SUMMARY_COLUMNS against the header hertz.edp writes.
 # summary.csv, as written by hertz.edp (one row per run)
 SUMMARY_COLUMNS = [
     "model", "method", "order", "n", "L", "kpen", "omega", "E", "nu", "R", "d",
-    "cont", "maxit", "tol", "ndof", "iterations", "factorizations", "status", "residual",
+    "cont", "maxit", "tol", "ndof", "iterations", "factorizations", "resolves", "status", "residual",
     "p0_fe", "p0_hertz", "err_p0", "p0_point", "F_fe", "F_hertz", "err_F",
     "a_fe", "a_hertz", "err_a", "max_penetration", "penetration_over_d",
+    "nodal_penetration_over_d",
     "kpen_critical", "t_mesh", "t_assemble", "t_solve", "t_factor", "t_resolve",
     "t_linear_one", "t_total", "accuracy_target", "accuracy_predicted",
     "warnings",

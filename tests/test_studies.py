@@ -108,3 +108,29 @@ def test_plane_strain_relations_hold(studies):
     assert np.allclose(df["p0_fe"], p0_from_a, rtol=0.01)
     a_from_P = np.sqrt(4 * df["F_fe"] * df["R"] / (math.pi * estar))
     assert np.allclose(df["a_fe"], a_from_P, rtol=0.01)
+
+
+def test_augmented_lagrangian_closes_every_node_at_a_moderate_penalty(studies):
+    aug = studies["speed"][studies["speed"]["method"] == "auglag"]
+    assert len(aug) >= 4 and (aug["status"] == "converged").all()
+    # Uzawa stops when every surface node is closed to tol = 1e-8 d
+    assert (aug["nodal_penetration_over_d"] < 1e-6).all()
+    moderate = aug[(aug["kpen"] == 1e5) & (aug["n"] >= 16)]
+    assert (moderate[["err_p0", "err_F", "err_a"]].abs().max(axis=1) < 0.001).all()
+
+
+def test_closing_the_surface_between_nodes_pins_the_contact_edge_to_a_node(studies):
+    # The P2 gap is quadratic on each surface edge: inside the edge that
+    # straddles r = a it bulges past the indenter between closed nodes. A stiff
+    # inner penalty pushes the bulge down, and with it the whole edge out of
+    # contact: the contact radius drops by about one surface element a/(4n).
+    aug = studies["speed"][(studies["speed"]["method"] == "auglag") & (studies["speed"]["n"] == 32)]
+    rows = aug.set_index("kpen")
+    moderate, stiff = rows.loc[1e5], rows.loc[1e7]
+    assert moderate["penetration_over_d"] > 1e-6 > stiff["penetration_over_d"]
+    element = 1 / (4 * 32)
+    assert abs(moderate["err_a"]) < 0.1 * element
+    assert -stiff["err_a"] > 0.5 * element
+    # p0 and F do not notice
+    assert stiff["err_p0"] == pytest.approx(moderate["err_p0"], abs=1e-5)
+    assert stiff["err_F"] == pytest.approx(moderate["err_F"], abs=1e-5)
