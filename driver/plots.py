@@ -53,10 +53,15 @@ def pareto(frame: pd.DataFrame, x: str, y: str) -> pd.DataFrame:
 def accuracy_vs_speed(tables: dict, path: Path) -> Path:
     rows = sphere_cases(tables)
     fig, ax = plt.subplots(figsize=(8, 5.5))
-    for (method, order), group in rows.groupby(["method", "order"]):
+    # auglag with a stiff inner penalty closes the surface between nodes and
+    # loses a surface element on a (README, auglag): drawn hollow
+    stiff = (rows["method"] == "auglag") & (rows["kpen"] >= 1e7)
+    for (method, order, hollow), group in rows.groupby(["method", "order", stiff]):
         color, marker = STYLE.get((method, order), ("k", "x"))
-        ax.scatter(group["wall_time"], group["max_err"] * 100, c=color, marker=marker, s=28,
-                   alpha=0.75, label=f"{method} P{order}", edgecolors="none")
+        label = f"{method} P{order}" + (", kpen ≥ 1e7" if hollow else "")
+        ax.scatter(group["wall_time"], group["max_err"] * 100, marker=marker, s=28, alpha=0.75,
+                   label=label, facecolors="none" if hollow else color,
+                   edgecolors=color if hollow else "none")
     front = pareto(rows, "wall_time", "max_err")
     ax.plot(front["wall_time"], front["max_err"] * 100, "k-", lw=1, label="Pareto front")
     last = None
