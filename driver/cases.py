@@ -1,74 +1,64 @@
-"""One solver case: its parameters, its command line and its stable identifier."""
+"""One solver case: the hertz.edp options it sets, its label and its exact identifier.
+
+A case names only the options it sets; hertz.edp supplies every other default,
+so no default is copied here. Values travel at full precision (shortest exact
+repr), and the identifier is built from the same text, so two different values
+never share an id.
+"""
 from __future__ import annotations
 
-import math
-from dataclasses import asdict, dataclass, fields, replace
+import hashlib
+from dataclasses import dataclass, replace
+from typing import Any, Union
+
+Value = Union[int, float, str]
+
+
+def exact(value: Value) -> str:
+    """The shortest text that reads back as the same value."""
+    if isinstance(value, bool):
+        raise TypeError("booleans are not hertz.edp values")
+    if isinstance(value, float):
+        text = repr(value)
+        return text[:-2] if text.endswith(".0") else text
+    return str(value)
 
 
 @dataclass(frozen=True)
 class Case:
-    """Every hertz.edp option; the defaults are hertz.edp's own."""
+    """hertz.edp options (names without the dash) and the study's label for them."""
 
-    model: str = "axi"
-    method: str = "newton"
-    order: int = 2
-    n: int = 16
-    L: float = 5000.0
-    kpen: float = 1e5
-    omega: float = 1.0
-    E: float = 10.0
-    nu: float = 0.3
-    R: float = 0.5
-    d: float = 0.02
-    cont: int = 0
-    maxit: int | None = None  # hertz.edp picks 50 (newton) or 2000 (fixedpoint)
-    tol: float = 1e-8
+    params: tuple[tuple[str, Value], ...] = ()
+    variant: str = ""            # the study's name for the series this case belongs to
+    expect_converged: bool = True  # False for cases that probe where methods fail
+
+    @classmethod
+    def of(cls, variant: str = "", expect_converged: bool = True, **params: Value) -> "Case":
+        return cls(tuple(sorted(params.items())), variant, expect_converged)
+
+    def with_(self, variant: str | None = None, expect_converged: bool | None = None,
+              **changes: Value) -> "Case":
+        params = dict(self.params) | changes
+        return replace(self, params=tuple(sorted(params.items())),
+                       variant=self.variant if variant is None else variant,
+                       expect_converged=self.expect_converged if expect_converged is None
+                       else expect_converged)
+
+    def get(self, name: str, default: Any = None) -> Any:
+        return dict(self.params).get(name, default)
 
     def args(self) -> list[str]:
-        """Command-line options for hertz.edp, every one explicit."""
-        out = []
-        for f in fields(self):
-            value = getattr(self, f.name)
-            if value is None:
-                continue
-            out += [f"-{f.name}", _fmt(value)]
+        """hertz.edp's command-line options for this case."""
+        out: list[str] = []
+        for name, value in self.params:
+            out += [f"-{name}", exact(value)]
         return out
 
     @property
     def case_id(self) -> str:
-        """Readable and unique: names the values that define the case."""
-        parts = [self.model, self.method, f"P{self.order}", f"n{self.n}", f"L{_fmt(self.L)}",
-                 f"k{_fmt(self.kpen)}", f"w{_fmt(self.omega)}", f"E{_fmt(self.E)}",
-                 f"nu{_fmt(self.nu)}", f"R{_fmt(self.R)}", f"d{_fmt(self.d)}", f"c{self.cont}",
-                 f"tol{_fmt(self.tol)}"]
-        if self.maxit is not None:
-            parts.append(f"it{self.maxit}")
-        return "_".join(parts)
-
-    def with_(self, **changes) -> "Case":
-        return replace(self, **changes)
-
-    def as_dict(self) -> dict:
-        return asdict(self)
-
-    @property
-    def estar(self) -> float:
-        return self.E / (1 - self.nu**2)
-
-    @property
-    def contact_scale(self) -> float:
-        """The length hertz.edp sizes the mesh with: Hertz a for the sphere, the
-        estimate of edp/lib/hertz.idp (planeHalfWidthEstimate) in plane strain."""
-        if self.model == "axi":
-            return math.sqrt(self.R * self.d)
-        return math.sqrt(2 * self.R * self.d / (math.log(2 * self.L) - 0.1))
-
-    def scaled_kpen(self, gamma: float) -> float:
-        """kpen = gamma E*/h with h = a/n, the mesh-consistent penalty."""
-        return gamma * self.estar * self.n / self.contact_scale
-
-
-def _fmt(value) -> str:
-    if isinstance(value, float):
-        return f"{value:.6g}"
-    return str(value)
+        """Readable and exact: name=value pairs in name order ("defaults" for none).
+        Very long ids keep their start and end in a hash, to stay a valid file name."""
+        text = "_".join(f"{name}={exact(value)}" for name, value in self.params) or "defaults"
+        if len(text) > 150:
+            text = text[:120] + "_" + hashlib.sha256(text.encode()).hexdigest()[:16]
+        return text

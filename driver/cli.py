@@ -1,29 +1,18 @@
-"""Command line: python -m driver {run,sweep,report,bench} --help."""
+"""Command line: hertz {run,sweep,report,bench,options} --help  (or python -m driver ...)."""
 from __future__ import annotations
 
 import argparse
-import os
+import json
+import math
 import sys
 import time
-from dataclasses import fields
 from pathlib import Path
 
-import pandas as pd
-
-from driver import RESULTS_DIR
+from driver import RESULTS_DIR, freefem
 from driver.cases import Case
-from driver.run import SetupError, run_case
-from driver.studies import STUDIES, SpecError, load_spec
-from driver.sweep import SweepError, sweep
+from driver.table import TableError
 
-_HELP = {
-    "model": "axi (sphere) or plane (cylinder)", "method": "newton, fixedpoint or auglag",
-    "order": "element order, 1 or 2", "n": "elements per contact radius",
-    "L": "domain radius in contact radii", "kpen": "penalty stiffness",
-    "omega": "fixed-point relaxation", "E": "Young's modulus", "nu": "Poisson's ratio",
-    "R": "indenter radius", "d": "indentation depth", "cont": "Newton penalty continuation, 0 or 1",
-    "maxit": "maximum iterations", "tol": "tolerance on residual and increment",
-}
+EXIT_FAILED = 1  # the driver could not get an answer (hertz.edp's own codes are 0, 2, 3, 4, 5)
 
 
 def _positive(kind):
@@ -31,59 +20,68 @@ def _positive(kind):
         try:
             value = kind(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"must be a positive {kind.__name__}, got {text!r}")
-        if not value > 0 or value != value or value == float("inf"):
+            raise argparse.ArgumentTypeError(f"must be a positive {kind.__name__}, got {text!r}") from None
+        if not value > 0 or not math.isfinite(value):
             raise argparse.ArgumentTypeError(f"must be a positive {kind.__name__}, got {text!r}")
         return value
     return parse
 
 
-def _common(p: argparse.ArgumentParser) -> None:
+def _results(p: argparse.ArgumentParser) -> None:
     p.add_argument("--results", type=Path, default=RESULTS_DIR,
                    help="results directory (default: %(default)s)")
 
 
-def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="python -m driver", description=__doc__)
+def build_parser(with_solver_options: bool = False) -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="hertz", description=__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
 
-    run = sub.add_parser("run", help="run one case and print its row")
-    defaults = Case()
-    for f in fields(Case):
-        kind = {"model": str, "method": str, "order": int, "n": int, "cont": int,
-                "maxit": int}.get(f.name, float)
-        run.add_argument(f"--{f.name}", type=kind, default=getattr(defaults, f.name),
-                         help=f"{_HELP[f.name]} (default: %(default)s)")
+    run = sub.add_parser("run", help="run one case; print its row (every hertz.edp option is --name)")
+    run.add_argument("--json", action="store_true", help="print the row as JSON")
     run.add_argument("--timeout", type=_positive(float), default=600.0,
                      help="seconds before the case is stopped (default: %(default)s)")
-    _common(run)
+    _results(run)
+    if with_solver_options:
+        for option in freefem.options().values():
+            if option.name in ("check",):
+                continue
+            run.add_argument(f"--{option.name}", metavar=option.kind.upper(), dest=f"opt_{option.name}",
+                             help=f"{option.help} (default {option.default}; {option.range})")
 
     sw = sub.add_parser("sweep", help="run named studies or a spec file, resumably")
-    sw.add_argument("studies", nargs="*", metavar="STUDY",
-                    help=f"study names: {', '.join(STUDIES)}; none with --spec")
+    sw.add_argument("studies", nargs="*", metavar="STUDY", help="study names (see --list); none with --spec")
     sw.add_argument("--all", action="store_true", help="every named study")
-    sw.add_argument("--quick", action="store_true", help="the small subset used by tests and CI")
+    sw.add_argument("--list", action="store_true", help="list the named studies and exit")
+    sw.add_argument("--quick", action="store_true", help="the small subsets used by the tests")
     sw.add_argument("--spec", type=Path, help="TOML or JSON grid: name, [base], [grid]")
-    sw.add_argument("--jobs", type=_positive(int), default=os.cpu_count() or 1,
-                    help="parallel FreeFEM processes (default: cores = %(default)s)")
+    sw.add_argument("--jobs", type=_positive(int), default=None,
+                    help="parallel FreeFEM processes (default: the cores)")
     sw.add_argument("--timeout", type=_positive(float), default=600.0,
                     help="seconds per case before it becomes a timeout row (default: %(default)s)")
-    sw.add_argument("--force", action="store_true", help="rerun cases already in the CSV")
+    sw.add_argument("--force", action="store_true", help="rerun cases already in the table")
+    sw.add_argument("--retry-failed", action="store_true", help="rerun only failed and timeout rows")
+    sw.add_argument("--yes", action="store_true", help="run a grid above 10000 cases")
     sw.add_argument("--no-progress", action="store_true", help="no progress bar")
-    _common(sw)
+    _results(sw)
 
-    rep = sub.add_parser("report", help="charts and REPORT.md from the study CSVs")
-    _common(rep)
+    rep = sub.add_parser("report", help="charts and REPORT.md from the study tables (reads CSV only)")
+    _results(rep)
 
     bench = sub.add_parser("bench", help="timing benchmark: medians of repeated runs")
     bench.add_argument("--repeat", type=_positive(int), default=5, help="runs per configuration")
-    _common(bench)
+    bench.add_argument("--out", type=Path, default=RESULTS_DIR / "local" / "bench.csv",
+                       help="where the table goes (default: %(default)s, not tracked)")
+
+    sub.add_parser("options", help="hertz.edp's option table")
     return parser
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = build_parser().parse_args(argv)
+    argv = sys.argv[1:] if argv is None else argv
     try:
+        # the run command's options come from hertz.edp's own table
+        parser = build_parser(with_solver_options=bool(argv) and argv[0] == "run")
+        args = parser.parse_args(argv)
         if args.command == "run":
             return _run(args)
         if args.command == "sweep":
@@ -94,50 +92,103 @@ def main(argv: list[str] | None = None) -> int:
             return 0
         if args.command == "bench":
             from driver.bench import bench
-            return bench(args.results, args.repeat)
-    except (SetupError, SweepError, SpecError) as exc:
+            return bench(args.out, args.repeat)
+        if args.command == "options":
+            for option in freefem.options().values():
+                print(f"-{option.name:12s} {option.default:24s} {option.range:32s} {option.help}")
+            return 0
+    except (freefem.SetupError, TableError, FileNotFoundError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
-        print("interrupted: finished cases are kept; run the same command to resume",
-              file=sys.stderr)
+        print("interrupted: finished cases are kept; run the same command to resume", file=sys.stderr)
         return 130
-    return 1
+    return EXIT_FAILED
+
+
+def _exit_code(row: dict) -> int:
+    """hertz.edp's exit code for this row's outcome."""
+    from driver.schema import EXIT_OF_STATUS
+    status = row.get("status")
+    if status in EXIT_OF_STATUS:
+        return EXIT_OF_STATUS[status]
+    if status in ("timeout", "nan"):
+        return 3
+    code = row.get("exit_code")
+    return int(code) if isinstance(code, (int, float)) and code == code and code in (2, 4) else EXIT_FAILED
 
 
 def _run(args) -> int:
-    case = Case(**{f.name: getattr(args, f.name) for f in fields(Case)})
-    workdir = args.results / "runs" / "single" / case.case_id
+    from driver.run import run_case
+    params = {}
+    for option in freefem.options().values():
+        text = getattr(args, f"opt_{option.name}", None)
+        if text is not None:
+            params[option.name] = text  # passed on as typed: hertz.edp checks it
+    out = params.pop("out", None)
+    case = Case(tuple(sorted(params.items())))
+    workdir = Path(out) if out else args.results / "runs" / "single" / case.case_id
     row = run_case(case, workdir, args.timeout, study="single")
-    print(pd.Series(row, dtype=object).to_string())
+    clean = {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in row.items()}
+    if args.json:
+        print(json.dumps(clean, indent=1, default=str))
+    else:
+        width = max(len(k) for k in clean)
+        for key, value in clean.items():
+            text = repr(value) if isinstance(value, float) else ("" if value is None else str(value))
+            print(f"{key:{width}s}  {text}")
     print(f"files: {workdir}", file=sys.stderr)
-    return 0 if row["status"] == "converged" else 3
+    if row.get("status") == "failed" and row.get("error"):
+        print(f"error: {row['error']}", file=sys.stderr)
+    return _exit_code(row)
 
 
 def _sweep(args) -> int:
-    jobs = []
-    if args.spec:
-        if args.studies or args.all:
-            raise SweepError("--spec runs one grid; give no study names or --all with it")
-        name, cases = load_spec(args.spec)
-        jobs.append((name, cases))
-    else:
-        names = list(STUDIES) if args.all else args.studies
-        if not names:
-            raise SweepError("name at least one study, or use --all or --spec")
-        for name in names:
-            if name not in STUDIES:
-                raise SweepError(f"unknown study '{name}'; known: {', '.join(STUDIES)}")
-            jobs.append((name, STUDIES[name](args.quick)))
-    start = time.perf_counter()
-    bad = 0
-    for name, cases in jobs:
-        frame = sweep(name, cases, args.results, args.jobs, args.timeout, args.force,
-                      progress=not args.no_progress)
-        ids = {c.case_id for c in cases}
-        mine = frame[frame["case_id"].isin(ids)]
-        counts = mine["status"].value_counts().to_dict()
-        bad += int((mine["status"] != "converged").sum())
-        print(f"{name}: {len(mine)} cases in {args.results / (name + '.csv')}: {counts}")
+    from driver.studies import STUDIES, SpecError, load_spec
+    from driver.sweep import Job, SweepError, cores, install_signal_handlers, report_unexpected, run_studies
+    if args.list:
+        for name, study in STUDIES.items():
+            print(f"{name:10s} {len(study.make(False)):4d} cases ({len(study.make(True))} quick): "
+                  f"{(study.make.__doc__ or '').strip().splitlines()[0]}")
+        return 0
+    try:
+        jobs_list = []
+        if args.spec:
+            if args.studies or args.all:
+                raise SweepError("--spec runs one grid; give no study names or --all with it")
+            name, cases = load_spec(args.spec)
+            jobs_list.append(Job(name, cases))
+        else:
+            names = list(STUDIES) if args.all else args.studies
+            if not names:
+                raise SweepError("name at least one study, or use --all or --spec")
+            for name in names:
+                if name not in STUDIES:
+                    raise SweepError(f"unknown study '{name}'; known: {', '.join(STUDIES)}")
+                study = STUDIES[name]
+                jobs_list.append(Job(name, study.make(args.quick), study.keep, study.repeats))
+        count = sum(len(j.cases) for j in jobs_list)
+        if count > 10_000 and not args.yes:
+            raise SweepError(f"{count} cases: a grid above 10000 needs --yes")
+        jobs = args.jobs or cores()
+        if jobs > cores():
+            print(f"warning: --jobs {jobs} is more than the {cores()} cores: cases will share cores "
+                  "and their wall_time (column jobs records it) will grow", file=sys.stderr)
+        install_signal_handlers()
+        start = time.perf_counter()
+        outcomes = run_studies(jobs_list, args.results, jobs, args.timeout, args.force,
+                               args.retry_failed, progress=not args.no_progress,
+                               say=lambda m: print(m, file=sys.stderr))
+    except (SweepError, SpecError) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    for o in outcomes:
+        counts = o.table["status"].value_counts().to_dict() if len(o.table) else {}
+        print(f"{o.study}: {len(o.table)} cases ({o.ran} run now) in "
+              f"{args.results / (o.study + '.csv')}: {counts}")
     print(f"sweep done in {time.perf_counter() - start:.1f} s")
+    bad = report_unexpected(outcomes)
+    if bad:
+        print(f"{bad} case(s) expected to converge did not (listed above)", file=sys.stderr)
+        return EXIT_FAILED
     return 0

@@ -1,18 +1,24 @@
-"""results/REPORT.md: the charts with captions and the best configurations."""
+"""results/REPORT.md: the charts with captions and the best configurations.
+
+Reads the study tables and the environment the sweep recorded; runs nothing,
+so it works where FreeFEM is absent.
+"""
 from __future__ import annotations
 
+import datetime
+import platform
+import subprocess
 from pathlib import Path
 
+import matplotlib
+import numpy as np
 import pandas as pd
 
-from driver import plots
-from driver.figures import figure_runs
+from driver import ROOT, plots, table
 from driver.studies import STUDIES
-from driver.sweep import load_study, study_csv
+from driver.sweep import ENVIRONMENT_FILE, study_csv
 
 LEVELS = (0.01, 0.001)
-BEST_COLUMNS = ["method", "order", "n", "L", "kpen", "omega", "wall_time", "iterations",
-                "err_p0", "err_F", "err_a", "penetration_over_d", "case_id"]
 
 
 def load_tables(results_dir: Path) -> dict[str, pd.DataFrame]:
@@ -20,13 +26,14 @@ def load_tables(results_dir: Path) -> dict[str, pd.DataFrame]:
     for name in STUDIES:
         path = study_csv(results_dir, name)
         if path.exists():
-            tables[name] = load_study(path)
+            tables[name] = table.read(path)
     return tables
 
 
 def best_configurations(tables: dict) -> pd.DataFrame:
-    """Fastest converged sphere case whose max |error| over p0, F, a is within each level."""
-    rows = plots.sphere_cases(tables)
+    """Fastest converged sphere case of the speed study (its timings are medians of
+    repeated runs) whose max |error| over p0, F and a is within each level."""
+    rows = plots.sphere_cases({"speed": tables.get("speed", pd.DataFrame())})
     best = []
     for level in LEVELS:
         within = rows[rows["max_err"] <= level]
@@ -38,47 +45,73 @@ def best_configurations(tables: dict) -> pd.DataFrame:
 
 
 def _fmt_table(best: pd.DataFrame) -> str:
-    head = "| accuracy | method | order | n | L/a | kpen | wall time [s] | iterations | err p0 | err F | err a | penetration/d | case |"
+    head = ("| accuracy | method | order | n | wall time [s] (median) | timings [s] | iterations "
+            "| err p0 | err F | err a | penetration/d | case |")
     lines = [head, "|" + "---|" * (head.count("|") - 1)]
     for _, r in best.iterrows():
         lines.append(
-            f"| {r['level']:.1%} | {r['method']} | P{r['order']} | {r['n']} | {r['L']:g} | {r['kpen']:.3g} "
-            f"| {r['wall_time']:.3f} | {r['iterations']:.0f} | {r['err_p0']:+.4%} | {r['err_F']:+.4%} "
-            f"| {r['err_a']:+.4%} | {r['penetration_over_d']:.2e} | `{r['case_id']}` |")
+            f"| {r['level']:.1%} | {r['method']} | P{r['order']:.0f} | {r['n']:.0f} | {r['wall_time']:.3f} "
+            f"| {r['timings']} | {r['iterations'] + r['coarse_iterations']:.0f} | {r['err_p0']:+.4%} "
+            f"| {r['err_F']:+.4%} | {r['err_a']:+.4%} | {r['penetration_over_d']:.2e} | `{r['case_id']}` |")
     return "\n".join(lines)
 
 
 CAPTIONS = {
-    "accuracy_vs_speed": "Max relative error over p0, F and a against the wall time the driver "
-                         "measured, every converged sphere case of every study; the black line is "
-                         "the Pareto front (no case is both faster and more accurate).",
-    "penalty": "Errors and max penetration / d against kpen (Newton, n = 16). Penetration falls as "
-               "1/kpen; the errors reach the discretization floor near kpen = 1e5 (P2). Orange: "
-               "Newton iterations (semismooth, Hertz-zone initial active set, no continuation).",
-    "mesh": "Errors against element size h/a at the contact, with the fitted log-log slopes; left a "
-            "fixed kpen (its penalty floor stops the P2 curves), right kpen = 100 E*/h.",
+    "accuracy_vs_speed": "Max relative error over p0, F and a against the wall time the driver measured, "
+                         "every converged sphere case of every study; the black line is the Pareto front "
+                         "(no case is both faster and more accurate).",
+    "penalty": "Left: max error and penetration / d against the absolute penalty (seed scene). The "
+               "penalty error falls as 1/kpen down to the discretization floor; lagrange and Uzawa have "
+               "no penalty error. Right: iterations over all levels.",
+    "mesh": "Errors against element size h/a at the contact for each series; the slopes are fitted "
+            "from the coarsest mesh until the curve meets its floor (penalty, domain or rounding), and "
+            "the legend names that range.",
     "stability": "Left: fixed point, kpen x omega, cells coloured by status with the iteration count; "
-                 "dashed: the predicted limit kpen = (2/omega - 1)/mu, mu the largest eigenvalue of "
-                 "K^-1 M on the first active set. Right: Newton with and without penalty continuation.",
+                 "dashed: the predicted limit kpen = (2/omega - 1)/mu. Middle: Newton from each start "
+                 "(the previous level's contact zone, zero, the Hertz zone), with and without line search "
+                 "and continuation, over the penalty in units of E*/h. Right: lagrange and Uzawa over "
+                 "the augmentation parameter.",
     "pressure_profiles": "Surface pressure for soft to stiff penalties. Dotted: the pointwise penalty "
                          "pressure kpen<u_z - h>+; solid: the recovered pressure that is reported "
                          "(P1: nodal contact force / nodal area; P2: L2 projection of the nodal forces).",
-    "zigzag": "Pointwise against recovered peak pressure error, against the chord mismatch "
-              "kpen h^2/(8R) in units of p0: the pointwise P1 value fails once the mismatch "
-              "approaches p0, the recovered one does not.",
-    "seed_figure1": "The seed's Figure 1 redone: surface displacement, gap h - u_z and the indenter "
-                    "for kpen from 1e1 to 1e5; a soft penalty lets the indenter sink into the body.",
+    "zigzag": "Pointwise against recovered peak pressure error, against the chord mismatch kpen h^2/(8R) "
+              "in units of p0: the pointwise P1 value fails once the mismatch approaches p0, the "
+              "recovered one does not.",
+    "seed_figure1": "The seed's Figure 1 redone: surface displacement, gap h - u_z and the indenter for "
+                    "soft to stiff penalties; a soft penalty lets the indenter sink into the body.",
     "axis_stresses": "sigma_z, sigma_r and tau_max = |sigma_r - sigma_z|/2 along the axis against Hertz.",
-    "domain": "Force bias of the clamped finite domain against its radius L/a: it follows "
-              "0.94% x 100a/L until the discretization floor.",
+    "domain": "Force bias of the clamped finite domain against its radius L/a (exact contact, so no "
+              "penalty error): it follows 0.94% x 100a/L until the discretization floor.",
+    "units": "The same dimensionless scenes given in three unit systems: the errors agree to rounding "
+             "(the spread under each scene is the largest difference of any relative error).",
 }
+
+
+def _git(*args: str) -> str:
+    try:
+        return subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True,
+                              check=False).stdout.strip()
+    except OSError:
+        return ""
+
+
+def environment(results_dir: Path) -> list[str]:
+    """Versions and dates: the sweep's machine (recorded when it ran) and this report's."""
+    lines = []
+    env_path = results_dir / ENVIRONMENT_FILE
+    if env_path.exists():
+        env = pd.read_csv(env_path, dtype=str).iloc[0].to_dict()
+        lines.append("Sweep: " + ", ".join(f"{k} {v}" for k, v in env.items()) + ".")
+    lines.append(f"Report: written {datetime.datetime.now().isoformat(timespec='seconds')} at commit "
+                 f"{_git('rev-parse', '--short', 'HEAD') or 'unknown'}, Python {platform.python_version()}, "
+                 f"pandas {pd.__version__}, numpy {np.__version__}, matplotlib {matplotlib.__version__}.")
+    return lines
 
 
 def write_report(results_dir: Path) -> Path:
     tables = load_tables(results_dir)
     if not tables:
-        raise FileNotFoundError(f"no study CSV in {results_dir}: run 'make sweep' or 'make sweep-quick'")
-    runs = figure_runs(results_dir)
+        raise FileNotFoundError(f"no study CSV in {results_dir}: run 'make sweep' or 'hertz sweep --all --quick'")
     charts = {}
     charts["accuracy_vs_speed"] = plots.accuracy_vs_speed(tables, results_dir / "accuracy_vs_speed.png")
     if "kpen" in tables:
@@ -87,27 +120,34 @@ def write_report(results_dir: Path) -> Path:
         charts["mesh"] = plots.mesh_study(tables["mesh"], results_dir / "mesh.png")
     if "stability" in tables:
         charts["stability"] = plots.stability_map(tables["stability"], results_dir / "stability.png")
-    charts["pressure_profiles"] = plots.pressure_profiles(runs, results_dir / "pressure_profiles.png")
+    figures = tables.get("figures")
+    profile_path = results_dir / "figures" / "profile.csv"
+    axis_path = results_dir / "figures" / "axis.csv"
+    if figures is not None and profile_path.exists():
+        profiles = table.read(profile_path)
+        charts["pressure_profiles"] = plots.pressure_profiles(figures, profiles, results_dir / "pressure_profiles.png")
+        charts["seed_figure1"] = plots.seed_figure(figures, profiles, results_dir / "seed_figure1.png")
+    if figures is not None and axis_path.exists():
+        charts["axis_stresses"] = plots.axis_stresses(figures, table.read(axis_path), results_dir / "axis_stresses.png")
     charts["zigzag"] = plots.zigzag(tables, results_dir / "zigzag.png")
-    charts["seed_figure1"] = plots.seed_figure(runs, results_dir / "seed_figure1.png")
-    charts["axis_stresses"] = plots.axis_stresses(runs, results_dir / "axis_stresses.png")
     if "domain" in tables:
         charts["domain"] = plots.domain_bias(tables["domain"], results_dir / "domain.png")
+    if "units" in tables:
+        charts["units"] = plots.units_check(tables["units"], results_dir / "units.png")
 
     best = best_configurations(tables)
     counts = {name: len(t) for name, t in tables.items()}
     text = ["# Results", "",
             f"Generated by `make report` from {sum(counts.values())} cases "
-            f"({', '.join(f'{k}: {v}' for k, v in counts.items())}).", "",
-            "## Best configuration for each accuracy level", "",
-            "Fastest converged sphere case whose max |error| over p0, F and a is within the level "
-            "(wall time measured by the driver, one case at a time per core).", "",
-            _fmt_table(best), ""]
+            f"({', '.join(f'{k}: {v}' for k, v in counts.items())}).", ""]
+    text += environment(results_dir) + [""]
+    text += ["## Best configuration for each accuracy level", "",
+             "Fastest converged sphere case of the speed study whose max |error| over p0, F and a is "
+             "within the level; its wall time is the median of the repeated runs listed.", "",
+             _fmt_table(best), ""]
     for name, path in charts.items():
         text += [f"## {name.replace('_', ' ').capitalize()}", "", f"![{name}]({path.name})", "",
                  CAPTIONS[name], ""]
     report = results_dir / "REPORT.md"
-    tmp = report.with_suffix(".md.part")
-    tmp.write_text("\n".join(text))
-    tmp.replace(report)
+    table.write_atomically(report, "\n".join(text))
     return report

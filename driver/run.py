@@ -1,112 +1,269 @@
-"""Run one case of hertz.edp in its own work directory and turn its output into a row."""
+"""Run one case of hertz.edp in its own directory and turn what happened into a row.
+
+run_case never raises: a solver that crashes, hangs, writes garbage or cannot
+start becomes a row with its status and message. The solver runs in its own
+process group with a marker in its environment; the group is killed on timeout,
+and every process that still carries the marker afterwards (a detached helper,
+or a leftover of a killed sweep, found again through the pid file) is killed
+too. The driver is a child subreaper, so orphans of a case stay within reach,
+and the solver dies with the thread that started it (setpriv --pdeathsig).
+"""
 from __future__ import annotations
 
-import hashlib
+import ctypes
 import math
 import os
 import shutil
 import signal
+import statistics
 import subprocess
+import threading
 import time
+import uuid
 from pathlib import Path
 
 import pandas as pd
 
-from driver import EDP_DIR, HERTZ_EDP
+from driver import freefem
 from driver.cases import Case
-from driver.schema import STUDY_COLUMNS, SUMMARY_COLUMNS
+from driver.schema import EXIT_OF_STATUS, TEXT_COLUMNS, study_columns
 
-FREEFEM = "FreeFem++"
-SETUP_HINT = "run 'make setup' (driver/setup.sh) to install FreeFEM"
-
-
-class SetupError(RuntimeError):
-    """The solver cannot run at all on this machine."""
+OUTPUT_FILES = ("summary.csv", "profile.csv", "history.csv", "axis.csv")
+MARKER = "HERTZ_CASE_TOKEN"
+PID_FILE = "freefem.pid"
 
 
-def edp_hash() -> str:
-    """Fingerprint of the solver sources: rows made by other sources are stale."""
-    digest = hashlib.sha256()
-    for path in sorted(EDP_DIR.rglob("*")):
-        if path.suffix in (".edp", ".idp"):
-            digest.update(path.relative_to(EDP_DIR).as_posix().encode())
-            digest.update(path.read_bytes())
-    return digest.hexdigest()[:12]
-
-
-def freefem_env() -> dict:
-    # Debian's packaged paths are wrong (see README): name the real ones
-    env = dict(os.environ)
-    env.setdefault("FF_LOADPATH", "/usr/lib/freefem++")
-    env.setdefault("FF_INCLUDEPATH", "/usr/include/freefem++/idp")
-    return env
-
-
-def check_freefem() -> str:
-    path = shutil.which(FREEFEM)
-    if path is None:
-        raise SetupError(f"{FREEFEM} is not on PATH; {SETUP_HINT}")
-    return path
-
-
-def freefem_command(args: list[str], outdir: Path) -> list[str]:
-    """The one way hertz.edp is called: no window, quiet, files in outdir."""
-    return [check_freefem(), "-nw", "-v", "0", str(HERTZ_EDP), *args, "-out", str(outdir)]
-
-
-def run_case(case: Case, workdir: Path, timeout: float, study: str = "",
-             procs: set | None = None) -> dict:
-    """Run hertz.edp; always return a full row, whatever happened."""
-    workdir.mkdir(parents=True, exist_ok=True)
-    for name in ("summary.csv", "profile.csv", "history.csv", "axis.csv"):
-        (workdir / name).unlink(missing_ok=True)
-    cmd = freefem_command(case.args(), workdir)
-    log_path = workdir / "freefem.log"
-    start = time.perf_counter()
-    status, error = None, ""
-    # output through a pipe: communicate() returns as soon as FreeFEM exits,
-    # where wait(timeout) on a file-backed process polls (up to 50 ms late)
-    proc = subprocess.Popen(cmd, cwd=workdir, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                            env=freefem_env(), start_new_session=True)
-    if procs is not None:
-        procs.add(proc)
+def _become_subreaper() -> None:
     try:
-        output, _ = proc.communicate(timeout=timeout)
-        exit_code = proc.returncode
-    except subprocess.TimeoutExpired:
-        os.killpg(proc.pid, signal.SIGKILL)  # its own process group: nothing survives
-        output, _ = proc.communicate()
-        exit_code, status, error = proc.returncode, "timeout", f"no result after {timeout:g} s"
-    finally:
-        if procs is not None:
-            procs.discard(proc)
-    wall = time.perf_counter() - start
-    log_path.write_bytes(" ".join(cmd).encode() + b"\n" + (output or b""))
+        ctypes.CDLL(None, use_errno=True).prctl(36, 1, 0, 0, 0)  # PR_SET_CHILD_SUBREAPER
+    except (OSError, AttributeError):
+        pass
 
-    row = {col: math.nan for col in STUDY_COLUMNS}
-    row.update(case.as_dict())
-    row["maxit"] = case.maxit if case.maxit is not None else math.nan
-    summary = workdir / "summary.csv"
-    if status is None and summary.exists():
-        values = pd.read_csv(summary).iloc[0].to_dict()
-        row.update({k: values.get(k, math.nan) for k in SUMMARY_COLUMNS})
-        status = row["status"]
-        numbers = [row[k] for k in ("p0_fe", "F_fe", "a_fe")]
-        if status == "converged" and any(pd.isna(v) or math.isinf(v) for v in numbers):
-            status, error = "nan", "converged but p0, F or a is NaN/inf"
-        elif status != "converged":
-            error = f"{status} after {row['iterations']:.0f} iterations, residual {row['residual']:.3g}"
-    elif status is None:
-        status = "failed"
-        error = _last_error(log_path) or f"exit code {exit_code} without summary.csv"
-    row.update(status=status, error=error, study=study, case_id=case.case_id,
-               edp_hash=edp_hash(), wall_time=wall, exit_code=exit_code)
+
+_become_subreaper()
+
+
+def processes_with(token: str) -> list[int]:
+    """Pids whose environment carries this case's marker."""
+    found = []
+    needle = f"{MARKER}={token}".encode()
+    for entry in Path("/proc").iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            if needle in (entry / "environ").read_bytes().split(b"\0"):
+                found.append(int(entry.name))
+        except OSError:
+            continue
+    return found
+
+
+def kill_case(token: str, pgid: int | None = None) -> int:
+    """Kill a case's process group and every process that carries its marker."""
+    killed = 0
+    if pgid:
+        try:
+            os.killpg(pgid, signal.SIGKILL)
+            killed += 1
+        except (ProcessLookupError, PermissionError):
+            pass
+    for pid in processes_with(token):
+        try:
+            os.kill(pid, signal.SIGKILL)
+            killed += 1
+        except (ProcessLookupError, PermissionError):
+            continue
+        try:
+            os.waitpid(pid, 0)  # an orphan handed to this subreaper: no zombie left
+        except ChildProcessError:
+            pass
+    return killed
+
+
+def reap_leftover(workdir: Path) -> int:
+    """A killed sweep may have left this case's solver running: kill it."""
+    pid_file = workdir / PID_FILE
+    try:
+        pgid_text, token = pid_file.read_text().split()
+        killed = kill_case(token, int(pgid_text))
+    except (OSError, ValueError):
+        killed = 0
+    pid_file.unlink(missing_ok=True)
+    return killed
+
+
+class Running:
+    """The solver processes running now, so that a signal can stop them all."""
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._cases: dict[str, int] = {}
+
+    def add(self, token: str, pgid: int) -> None:
+        with self._lock:
+            self._cases[token] = pgid
+
+    def discard(self, token: str) -> None:
+        with self._lock:
+            self._cases.pop(token, None)
+
+    def kill_all(self) -> None:
+        with self._lock:
+            cases = list(self._cases.items())
+        for token, pgid in cases:
+            kill_case(token, pgid)
+
+
+RUNNING = Running()
+
+
+def _launcher() -> list[str]:
+    # the solver dies with the thread that started it, whatever kills the driver
+    setpriv = shutil.which("setpriv")
+    return [setpriv, "--pdeathsig", "KILL", "--"] if setpriv else []
+
+
+def _empty_row(case: Case, study: str, columns: list[str]) -> dict:
+    row: dict = {col: math.nan for col in columns}
+    row.update(case.params)
+    row.update(study=study, case_id=case.case_id, variant=case.variant,
+               expect_converged=case.expect_converged, edp_hash=freefem.edp_hash())
     return row
 
 
-def _last_error(log_path: Path) -> str:
-    lines = [ln.strip() for ln in log_path.read_text(errors="replace").splitlines() if ln.strip()]
+def read_summary(path: Path, summary_columns: list[str]) -> tuple[dict | None, str]:
+    """The one row of summary.csv, or None and why it is unusable."""
+    if not path.is_file():
+        return None, "no summary.csv" if not path.exists() else "summary.csv is not a file"
+    try:
+        frame = pd.read_csv(path, dtype={c: str for c in TEXT_COLUMNS})
+    except (ValueError, UnicodeDecodeError, OSError) as exc:
+        return None, f"summary.csv unreadable: {exc}".splitlines()[0][:200]
+    if len(frame) != 1:
+        return None, f"summary.csv has {len(frame)} data rows, not 1"
+    if list(frame.columns) != summary_columns:
+        unknown = sorted(set(frame.columns) - set(summary_columns))
+        missing = sorted(set(summary_columns) - set(frame.columns))
+        return None, f"summary.csv columns differ from hertz.edp's (unknown {unknown}, missing {missing})"
+    row = frame.iloc[0].to_dict()
+    for col in summary_columns:
+        if col in TEXT_COLUMNS:
+            continue
+        value = row[col]
+        if isinstance(value, str):
+            return None, f"summary.csv: {col} is not a number: {value!r}"
+    return row, ""
+
+
+def _status(exit_code: int, summary: dict | None, why: str) -> tuple[str, str]:
+    """The row's status and message from the exit code and the summary together."""
+    if exit_code < 0:
+        return "failed", f"killed by signal {-exit_code}"
+    if summary is None:
+        return "failed", why or f"exit code {exit_code} without summary.csv"
+    status = str(summary.get("status"))
+    if status not in EXIT_OF_STATUS:
+        return "failed", f"unknown status {status!r} in summary.csv (exit code {exit_code})"
+    if EXIT_OF_STATUS[status] != exit_code:
+        return "failed", f"summary.csv says {status} but hertz.edp exited with {exit_code}"
+    if status in ("converged", "inaccurate"):
+        values = [summary.get(k) for k in ("p0_fe", "F_fe", "a_fe")]
+        if any(not isinstance(v, (int, float)) or not math.isfinite(v) for v in values):
+            return "nan", f"{status} but p0, F or a is not finite"
+        return status, ""
+    return status, f"{status} after {summary.get('iterations')} iterations, residual {summary.get('residual')}"
+
+
+def _last_error(log: Path) -> str:
+    try:
+        lines = [ln.strip() for ln in log.read_text(errors="replace").splitlines() if ln.strip()]
+    except OSError:
+        return ""
+    for line in lines:
+        if line.startswith("hertz.edp: error:"):
+            return line[:300]
     for line in reversed(lines):
         if "error" in line.lower():
             return line[:300]
-    return lines[-1][:300] if len(lines) > 1 else ""
+    return lines[-1][:300] if lines else ""
+
+
+def run_case(case: Case, workdir: Path, timeout: float, study: str = "",
+             summary_columns: list[str] | None = None, jobs: int = 1, repeats: int = 1) -> dict:
+    """Run hertz.edp for one case; always return a full row, whatever happened.
+    With repeats > 1 the case runs that many times (the rest of the row is the
+    last run's) and wall_time is the median of their times, listed in timings."""
+    start = time.perf_counter()
+    try:
+        columns = summary_columns or freefem.summary_columns()
+    except Exception as exc:  # noqa: BLE001 - a row is the answer to anything
+        columns = []
+        row = _empty_row(case, study, study_columns(columns))
+        row.update(status="failed", error=f"cannot read hertz.edp's columns: {exc}"[:300])
+        return row
+    row = _empty_row(case, study, study_columns(columns))
+    row["jobs"] = jobs
+    times = []
+    try:
+        for _ in range(repeats):
+            t0 = time.perf_counter()
+            row.update(_run(case, workdir, timeout, columns))
+            times.append(time.perf_counter() - t0)
+            if row["status"] in ("timeout", "failed"):
+                break
+    except Exception as exc:  # noqa: BLE001 - a row is the answer to anything
+        row.update(status="failed", error=f"driver error: {exc!r}"[:300])
+    row["wall_time"] = statistics.median(times) if times else time.perf_counter() - start
+    row["timings"] = ";".join(f"{t:.4f}" for t in times)
+    row.update(study=study, case_id=case.case_id, variant=case.variant,
+               expect_converged=case.expect_converged)
+    return row
+
+
+def _run(case: Case, workdir: Path, timeout: float, columns: list[str]) -> dict:
+    workdir.mkdir(parents=True, exist_ok=True)
+    reap_leftover(workdir)
+    for name in OUTPUT_FILES:
+        (workdir / name).unlink(missing_ok=True)
+    cmd = _launcher() + freefem.command(case.args() + ["-out", str(workdir)])
+    token = uuid.uuid4().hex
+    env = freefem.freefem_env() | {MARKER: token}
+    log_path = workdir / "freefem.log"
+    timed_out = threading.Event()
+    with open(log_path, "wb") as log:
+        log.write((" ".join(cmd) + "\n").encode())
+        log.flush()
+        # output to a file, not a pipe: a helper that keeps the pipe open would
+        # hold a finished case until its timeout
+        proc = subprocess.Popen(cmd, cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
+                                env=env, start_new_session=True)
+    (workdir / PID_FILE).write_text(f"{proc.pid} {token}\n")
+    RUNNING.add(token, proc.pid)
+
+    def expire() -> None:
+        timed_out.set()
+        kill_case(token, proc.pid)
+    timer = threading.Timer(timeout, expire)
+    timer.start()
+    try:
+        # a blocking wait returns the moment the solver exits (Popen.wait with
+        # a timeout polls, up to 50 ms late), and wait4 gives its peak memory
+        _, status, usage = os.wait4(proc.pid, 0)
+        proc.returncode = os.waitstatus_to_exitcode(status)
+    finally:
+        timer.cancel()
+        kill_case(token, proc.pid)  # helpers left in its group or detached
+        RUNNING.discard(token)
+        (workdir / PID_FILE).unlink(missing_ok=True)
+    out: dict = {"exit_code": proc.returncode, "max_rss_mb": usage.ru_maxrss / 1024}
+    if timed_out.is_set():
+        out.update(status="timeout", error=f"no result after {timeout:g} s")
+        return out
+    summary, why = read_summary(workdir / "summary.csv", columns)
+    status, error = _status(proc.returncode, summary, why)
+    if summary is not None:
+        out.update(summary)
+    if status == "failed" and proc.returncode in (1, 2, 4):  # the solver says why
+        error = _last_error(log_path) or error
+    out.update(status=status, error=error)
+    return out

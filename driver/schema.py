@@ -1,24 +1,27 @@
-"""Column names of the CSV files: the ones hertz.edp writes and the ones the driver adds.
+"""Columns and statuses the driver adds to hertz.edp's own (freefem.summary_columns).
 
-tests/test_driver.py checks SUMMARY_COLUMNS against the header hertz.edp writes.
+A study CSV is  LEADING + summary.csv's columns + TRAILING.
 """
+from __future__ import annotations
 
-# summary.csv, as written by hertz.edp (one row per run)
-SUMMARY_COLUMNS = [
-    "model", "method", "order", "n", "L", "kpen", "omega", "E", "nu", "R", "d",
-    "cont", "maxit", "tol", "ndof", "iterations", "factorizations", "resolves", "status", "residual",
-    "p0_fe", "p0_hertz", "err_p0", "p0_point", "F_fe", "F_hertz", "err_F",
-    "a_fe", "a_hertz", "err_a", "max_penetration", "penetration_over_d",
-    "nodal_penetration_over_d",
-    "kpen_critical", "t_mesh", "t_assemble", "t_solve", "t_factor", "t_resolve",
-    "t_linear_one", "t_total", "accuracy_target", "accuracy_predicted",
-    "warnings",
-]
+LEADING = ["study", "case_id", "variant", "expect_converged"]
+TRAILING = ["edp_hash", "wall_time", "timings", "max_rss_mb", "jobs", "exit_code", "error"]
 
-# added by the driver to every row of a study CSV
-DRIVER_COLUMNS = ["study", "case_id", "edp_hash", "wall_time", "exit_code", "error"]
+# read as text whatever they look like (an edp_hash such as 05426170e796 is not a number)
+TEXT_COLUMNS = ["study", "case_id", "variant", "edp_hash", "error", "model", "method", "start",
+                "status", "warnings", "timings"]
 
-STUDY_COLUMNS = ["study", "case_id"] + SUMMARY_COLUMNS + DRIVER_COLUMNS[2:]
+# statuses: hertz.edp's (README), then the driver's own
+SOLVER_STATUSES = ["converged", "inaccurate", "roundoff", "stalled", "diverged", "maxiter"]
+DRIVER_STATUSES = ["nan", "timeout", "failed"]
+STATUSES = SOLVER_STATUSES + DRIVER_STATUSES
+# worth running again with more time or after a fix elsewhere (--retry-failed)
+RETRY_STATUSES = ["failed", "timeout"]
 
-# statuses: the first three come from hertz.edp, the rest from the driver
-STATUSES = ["converged", "diverged", "maxiter", "nan", "timeout", "failed"]
+# hertz.edp's exit code for each of its statuses
+EXIT_OF_STATUS = {"converged": 0, "inaccurate": 5, "roundoff": 3, "stalled": 3, "diverged": 3,
+                  "maxiter": 3}
+
+
+def study_columns(summary: list[str]) -> list[str]:
+    return LEADING + list(summary) + TRAILING

@@ -1,100 +1,200 @@
-"""Named studies and user grids. Each quick study is a subset of its full one,
-so a full sweep after a quick one only runs the missing cases."""
+"""Named studies and user grids.
+
+A study is a list of cases, each with a variant label (the series it belongs
+to, which charts and tests select by) and whether it must converge (cases that
+probe where a method fails are expected not to). Each quick study is a subset
+of its full one, so a full sweep after a quick one runs only the missing cases.
+Cases name only the options they change; hertz.edp holds the defaults (the
+seed scene: E = 10, nu = 0.3, R = 0.5, d = 0.02).
+"""
 from __future__ import annotations
 
 import itertools
-import math
 import json
+import math
 import tomllib
-from dataclasses import fields
+from dataclasses import dataclass
 from pathlib import Path
+from typing import Callable
 
-from driver.cases import Case
+from driver import freefem
+from driver.cases import Case, Value
+from driver.table import TableError, check_name
 
-DEFAULT = Case()
-MESH_GAMMA = 100.0  # kpen = MESH_GAMMA E*/h in the scaled-penalty mesh series
-DECADES = [10.0**k for k in range(1, 10)]
+DECADES = [10.0**k for k in range(1, 10)]            # absolute kpen on the seed scene
+GAMMAS = [10.0**k for k in range(-2, 7)]             # kpen in units of E*/h
 
 
-def grid(base: Case = DEFAULT, **axes) -> list[Case]:
+def grid(base: Case, **axes: list[Value]) -> list[Case]:
     """All combinations of the given values, on top of base."""
     names = list(axes)
     return [base.with_(**dict(zip(names, combo)))
             for combo in itertools.product(*(axes[k] for k in names))]
 
 
+def labelled(cases: list[Case], label: Callable[[Case], str],
+             expect: Callable[[Case], bool] = lambda c: True) -> list[Case]:
+    return [c.with_(variant=label(c), expect_converged=expect(c)) for c in cases]
+
+
+def method_label(c: Case) -> str:
+    return f"{c.get('method', 'newton')} P{c.get('order', 2)}"
+
+
 def kpen_study(quick: bool) -> list[Case]:
-    if quick:
-        return (grid(method=["newton"], order=[1, 2], kpen=[1e1, 1e3, 1e5, 1e7, 1e9])
-                + grid(method=["fixedpoint"], order=[2], kpen=[1e1, 1e3]))
-    return grid(method=["newton", "fixedpoint"], order=[1, 2], kpen=DECADES)
+    """The penalty error against kpen, next to the exact methods on the same scene."""
+    decades = [1e1, 1e3, 1e5, 1e7, 1e9] if quick else DECADES
+    cases = grid(Case(), method=["newton"], order=[1, 2], kpen=decades)
+    cases += grid(Case(), method=["lagrange"], order=[2] if quick else [1, 2], kpen=decades)
+    if not quick:
+        cases += grid(Case(), method=["uzawa"], order=[2], kpen=decades)
+    cases += grid(Case(), method=["fixedpoint"], order=[2] if quick else [1, 2],
+                  kpen=[1e1, 1e3] if quick else decades)
+    # a soft penalty leaves a large penetration (inaccurate), Uzawa is slow
+    # below ~E*/h and the lagged fixed point diverges beyond ~45: probes
+    return labelled(cases, method_label,
+                    lambda c: c.get("method") == "lagrange"
+                    or (c.get("method") == "newton" and c.get("kpen") >= 1e5))
 
 
 def mesh_study(quick: bool) -> list[Case]:
-    # P2 at n = 160 (~600k dofs) would cost minutes for a point on the floor
+    """Convergence in the element size: a fixed penalty, the scaled one, exact contact."""
     ns = {1: [5, 10, 20, 40], 2: [5, 10, 20, 40]} if quick else \
         {1: [5, 10, 20, 40, 80, 160], 2: [5, 10, 20, 40, 80]}
     cases = []
     for order, values in ns.items():
-        cases += grid(order=[order], n=values, kpen=[1e5])
-        cases += [c.with_(kpen=float(f"{c.scaled_kpen(MESH_GAMMA):.6g}"))
-                  for c in grid(order=[order], n=values)]
-    return cases
+        if not quick:
+            cases += labelled(grid(Case(), order=[order], n=values, kpen=[1e5]),
+                              lambda c: f"kpen 1e5 P{c.get('order')}")
+        cases += labelled(grid(Case(), order=[order], n=values),
+                          lambda c: f"gamma 100 P{c.get('order')}")
+        cases += labelled(grid(Case(), method=["lagrange"], order=[order], n=values),
+                          lambda c: f"lagrange P{c.get('order')}")
+    # coarse meshes are expected to be off by more than 1% (inaccurate)
+    return [c.with_(expect_converged=False) for c in cases]
 
 
 def domain_study(quick: bool) -> list[Case]:
+    """The clamped boundary's bias on F against the domain radius, with exact contact."""
     Ls = [20.0, 100.0, 1000.0, 5000.0] if quick else \
         [10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0, 2000.0, 5000.0, 20000.0]
-    return grid(kpen=[1e8], L=Ls)
+    return labelled(grid(Case(), method=["lagrange"], L=Ls), lambda c: "lagrange P2")
 
 
 def plane_study(quick: bool) -> list[Case]:
-    base = DEFAULT.with_(model="plane")
+    """The cylinder: a(P), p0(P) and p0 = E* a/(2R) over meshes and depths."""
+    base = Case.of(model="plane")
     if quick:
-        return grid(base, n=[16, 32], kpen=[1e5], d=[0.01, 0.04])
-    return grid(base, n=[8, 16, 32], kpen=[1e5, 1e8], d=[0.01, 0.02, 0.04])
+        cases = grid(base, n=[16, 32], d=[0.01, 0.04])
+    else:
+        cases = grid(base, n=[8, 16, 32], d=[0.01, 0.02, 0.04])
+        cases += grid(base, method=["lagrange"], n=[8, 16, 32], d=[0.01, 0.02, 0.04])
+    return labelled(cases, method_label)
 
 
 def stability_study(quick: bool) -> list[Case]:
-    fp = DEFAULT.with_(method="fixedpoint")
+    """Where each method and Newton start fails: fixed point (kpen x omega), Newton
+    from each start with and without line search and continuation, Uzawa and lagrange,
+    over the penalty in units of E*/h."""
+    fp = Case.of(method="fixedpoint")
     if quick:
-        return (grid(fp, n=[8, 16], omega=[0.5, 1.0], kpen=[10.0, 30.0, 100.0, 300.0, 1000.0])
-                + grid(cont=[0, 1], kpen=[1e3, 1e6, 1e9]))
-    return (grid(fp, n=[8, 16, 32], omega=[0.1, 0.2, 0.5, 1.0, 1.5],
-                 kpen=[3.0, 10.0, 30.0, 100.0, 300.0, 1000.0, 1e4])
-            + grid(cont=[0, 1], order=[1, 2], kpen=DECADES)
-            + grid(n=[64], cont=[0, 1], order=[1, 2], kpen=[1e5, 1e7, 1e9]))
+        cases = grid(fp, n=[8, 16], omega=[0.5, 1.0], kpen=[10.0, 30.0, 100.0, 300.0, 1000.0])
+        gammas = [1e-2, 1.0, 1e2, 1e4, 1e6]
+        newton = grid(Case(), start=["coarse", "zero"], gamma=gammas)
+        exact = grid(Case(), method=["lagrange", "uzawa"], gamma=gammas[:-1])
+    else:
+        cases = grid(fp, n=[8, 16, 32], omega=[0.1, 0.2, 0.5, 1.0, 1.5],
+                     kpen=[3.0, 10.0, 30.0, 100.0, 300.0, 1000.0, 1e4])
+        newton = grid(Case(), start=["coarse", "zero", "hertz"], linesearch=[1, 0], cont=[0, 1],
+                      gamma=GAMMAS)
+        newton += grid(Case(), order=[1], start=["coarse", "zero", "hertz"], gamma=GAMMAS)
+        exact = grid(Case(), method=["lagrange", "uzawa"], order=[1, 2], gamma=GAMMAS)
+    cases = labelled(cases, lambda c: f"fixedpoint n={c.get('n')}", lambda c: False)
+
+    def newton_label(c: Case) -> str:
+        return (f"P{c.get('order', 2)} start {c.get('start')}"
+                + ("" if c.get("linesearch", 1) else ", no line search")
+                + (", continuation" if c.get("cont", 0) else ""))
+    # the default path (coarse start, line search, no continuation) must converge
+    cases += labelled(newton, newton_label,
+                      lambda c: c.get("start") == "coarse" and c.get("linesearch", 1) == 1
+                      and c.get("cont", 0) == 0 and c.get("gamma") >= 10)
+    cases += labelled(exact, method_label, lambda c: c.get("method") == "lagrange")
+    return cases
 
 
 def speed_study(quick: bool) -> list[Case]:
+    """Accuracy against speed: mesh series of each method and order."""
     if quick:
-        return (grid(order=[1, 2], n=[4, 8, 16], kpen=[1e8]) + grid(method=["auglag"], n=[8, 16])
-                + grid(method=["auglag"], n=[32], kpen=[1e5, 1e7]))
-    return (grid(order=[1, 2], n=[4, 8, 16, 32, 64], kpen=[1e5, 1e8])
-            + grid(order=[1], n=[128], kpen=[1e5, 1e8])
-            + grid(method=["auglag"], n=[4, 8, 16, 32, 64])
-            # a stiff inner penalty closes the surface between nodes too (see README)
-            + grid(method=["auglag"], n=[8, 16, 32, 64], kpen=[1e7])
-            + grid(n=[8, 16, 32, 64], kpen=[1e3, 1e4])
-            + grid(method=["fixedpoint"], n=[8, 16], kpen=[30.0]))
+        cases = grid(Case(), order=[1, 2], n=[4, 8, 16])
+        cases += grid(Case(), method=["lagrange"], n=[8, 16])
+    else:
+        cases = grid(Case(), order=[1, 2], n=[4, 8, 16, 32, 64])
+        cases += grid(Case(), order=[1], n=[128])
+        cases += grid(Case(), method=["lagrange"], order=[1, 2], n=[4, 8, 16, 32, 64])
+        cases += grid(Case(), method=["uzawa"], n=[4, 8, 16, 32, 64])
+        cases += grid(Case(), kpen=[1e5], n=[8, 16, 32, 64])
+        cases += grid(Case(), method=["fixedpoint"], kpen=[30.0], n=[8, 16])
+    return labelled(cases, method_label, lambda c: False)
 
 
-STUDIES = {
-    "kpen": kpen_study,
-    "mesh": mesh_study,
-    "domain": domain_study,
-    "plane": plane_study,
-    "stability": stability_study,
-    "speed": speed_study,
-}
+# The same dimensionless scene in several unit systems: E, R and d scaled so
+# that E*, d/R and the mesh are the same scene (relative errors must agree).
+UNIT_SYSTEMS = {"seed": (1.0, 1.0), "SI (Pa, m)": (1e9, 1e-3), "mm, N, MPa": (1e3, 1.0)}
+SCENES = {"seed sphere": dict(E=10.0, nu=0.3, R=0.5, d=0.02),
+          "steel ball": dict(E=210.0, nu=0.3, R=10.0, d=0.01),
+          "rubber": dict(E=0.002, nu=0.49, R=5.0, d=0.2)}
+
+
+def units_study(quick: bool) -> list[Case]:
+    """One scene given in three unit systems: identical relative errors and iterations."""
+    cases = []
+    scenes = list(SCENES)[:2] if quick else list(SCENES)
+    for scene in scenes:
+        for units, (stress, length) in UNIT_SYSTEMS.items():
+            s = SCENES[scene]
+            base = Case.of(E=s["E"] * stress, nu=s["nu"], R=s["R"] * length, d=s["d"] * length)
+            for method in (["newton"] if quick else ["newton", "lagrange"]):
+                cases.append(base.with_(method=method, variant=f"{scene}, {method}, {units}"))
+    return cases
+
+
+def figures_study(quick: bool) -> list[Case]:
+    """The runs behind the profile, seed-figure and axis-stress charts (their
+    profile.csv and axis.csv are kept)."""
+    cases = labelled(grid(Case(), n=[8], order=[1, 2], kpen=[1e3, 1e5, 1e8]),
+                     lambda c: f"profile P{c.get('order')}", lambda c: False)
+    cases += labelled(grid(Case(), kpen=[1e1, 1e2, 1e3, 1e5]), lambda c: "seed figure",
+                      lambda c: False)
+    cases += [Case.of(method="lagrange", variant="axis")]
+    return cases
+
+
+@dataclass(frozen=True)
+class Study:
+    name: str
+    make: Callable[[bool], list[Case]]
+    keep: tuple[str, ...] = ()  # per-case files gathered into results/<name>/<file>
+    repeats: int = 1            # runs per case: wall_time is their median (the speed study)
+
+
+STUDIES = {s.name: s for s in [
+    Study("kpen", kpen_study),
+    Study("mesh", mesh_study),
+    Study("domain", domain_study),
+    Study("plane", plane_study),
+    Study("stability", stability_study),
+    Study("speed", speed_study, repeats=3),
+    Study("units", units_study),
+    Study("figures", figures_study, keep=("profile.csv", "axis.csv")),
+]}
 
 
 class SpecError(ValueError):
     """A study spec file that cannot define cases."""
 
 
-_FIELDS = {f.name: f for f in fields(Case)}
-_TYPES = {"model": str, "method": str, "order": int, "n": int, "cont": int, "maxit": int}
+SPEC_FORBIDDEN = {"out", "vtk", "check"}  # the driver owns where files go
 
 
 def load_spec(path: Path) -> tuple[str, list[Case]]:
@@ -104,23 +204,31 @@ def load_spec(path: Path) -> tuple[str, list[Case]]:
         data = json.loads(text) if path.suffix == ".json" else tomllib.loads(text)
     except (OSError, ValueError) as exc:
         raise SpecError(f"spec {path}: cannot read: {exc}") from None
+    if not isinstance(data, dict):
+        raise SpecError(f"spec {path}: the top level must be a table (name, base, grid)")
     unknown = set(data) - {"name", "base", "grid"}
     if unknown:
         raise SpecError(f"spec {path}: unknown key(s) {sorted(unknown)}; allowed: name, base, grid")
     name = data.get("name")
-    if not isinstance(name, str) or not name.replace("-", "").replace("_", "").isalnum():
-        raise SpecError(f"spec {path}: 'name' must be a word of letters, digits, - or _")
+    if not isinstance(name, str):
+        raise SpecError(f"spec {path}: 'name' must be a string")
+    try:
+        check_name(name)
+    except TableError as exc:
+        raise SpecError(f"spec {path}: {exc}") from None
     if name in STUDIES:
         raise SpecError(f"spec {path}: name '{name}' is a built-in study; choose another")
-    base = {k: _value(path, k, v) for k, v in _table(path, data, "base").items()}
+    table = freefem.options()
+    base = {k: _value(path, table, k, v) for k, v in _table(path, data, "base").items()}
     axes = {}
     for key, values in _table(path, data, "grid").items():
         if not isinstance(values, list) or not values:
             raise SpecError(f"spec {path}: grid.{key} must be a non-empty list")
-        axes[key] = [_value(path, key, v) for v in values]
+        axes[key] = [_value(path, table, key, v) for v in values]
     if not axes:
         raise SpecError(f"spec {path}: [grid] must list at least one parameter")
-    return name, grid(DEFAULT.with_(**base), **axes)
+    count = math.prod(len(v) for v in axes.values())
+    return name, labelled(grid(Case.of(**base), **axes), lambda c: name) if count else []
 
 
 def _table(path: Path, data: dict, key: str) -> dict:
@@ -130,20 +238,21 @@ def _table(path: Path, data: dict, key: str) -> dict:
     return table
 
 
-def _value(path: Path, key: str, value):
-    if key not in _FIELDS:
-        raise SpecError(f"spec {path}: unknown parameter '{key}'; known: {', '.join(_FIELDS)}")
-    want = _TYPES.get(key, float)
-    ok = isinstance(value, str) if want is str else \
-        isinstance(value, (int, float)) and not isinstance(value, bool)
-    if not ok:
-        raise SpecError(f"spec {path}: {key} must be a {want.__name__}, got {value!r}")
-    if want is int:
-        if not math.isfinite(value) or not float(value).is_integer():
+def _value(path: Path, table: dict[str, freefem.Option], key: str, value) -> Value:
+    if key not in table or key in SPEC_FORBIDDEN:
+        known = ", ".join(k for k in table if k not in SPEC_FORBIDDEN)
+        raise SpecError(f"spec {path}: unknown parameter '{key}'; known: {known}")
+    option = table[key]
+    if option.kind == "word":
+        if not isinstance(value, str) or value not in (option.choices or []):
+            raise SpecError(f"spec {path}: {key} must be one of {option.range}, got {value!r}")
+        return value
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise SpecError(f"spec {path}: {key} must be a number, got {value!r}")
+    if not math.isfinite(value):
+        raise SpecError(f"spec {path}: {key} must be finite, got {value!r}")
+    if option.kind == "int":
+        if not float(value).is_integer():
             raise SpecError(f"spec {path}: {key} must be an integer, got {value!r}")
         return int(value)
-    if want is float:
-        value = float(value)
-        if value != value or value in (float("inf"), float("-inf")):
-            raise SpecError(f"spec {path}: {key} must be finite, got {value!r}")
-    return value
+    return float(value)

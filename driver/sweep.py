@@ -1,40 +1,46 @@
-"""Run a list of cases in parallel into one study CSV, row by row, resumable.
+"""Run the cases of a study in parallel into its table, row by row, resumably.
 
-The CSV is append-only while a sweep runs: each finished case is one line,
-flushed and fsynced, so an interrupted sweep keeps every finished case. A lock
-file keeps two sweeps from writing the same study at once.
+Each case runs in its own directory, results/runs/<study>/<case_id>/. Finished
+cases are appended to results/<study>.csv as they arrive (table.py); running
+the same command again runs only the missing cases. A lock keeps two sweeps
+off one table. Costly cases start first and the progress bar counts predicted
+cost, not cases, so its ETA holds. Ctrl-C, SIGTERM and SIGHUP stop the running
+solvers and keep every finished row.
 """
 from __future__ import annotations
 
-import csv
-import fcntl
-import io
+import atexit
 import os
+import platform
 import signal
+import subprocess
+import sys
 import tempfile
-from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
+import time
+from concurrent.futures import FIRST_COMPLETED, Future, ThreadPoolExecutor, wait
+from contextlib import ExitStack
+from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 from tqdm import tqdm
 
+from driver import ROOT, freefem, table
 from driver.cases import Case
-from driver.run import check_freefem, edp_hash, run_case
-from driver.schema import STUDY_COLUMNS
+from driver.run import RUNNING, run_case
+from driver.schema import RETRY_STATUSES, study_columns
+
+LARGE_GRID = 10_000
+ENVIRONMENT_FILE = "sweep_environment.csv"
 
 
 class SweepError(RuntimeError):
-    """A sweep that cannot start; the message says why."""
+    """A sweep that cannot start or go on; the message says why."""
 
 
 def study_csv(results_dir: Path, study: str) -> Path:
     return results_dir / f"{study}.csv"
-
-
-def load_study(path: Path) -> pd.DataFrame:
-    if not path.exists() or path.stat().st_size == 0:
-        return pd.DataFrame(columns=STUDY_COLUMNS)
-    return pd.read_csv(path)
 
 
 def check_writable(results_dir: Path) -> None:
@@ -46,118 +52,216 @@ def check_writable(results_dir: Path) -> None:
         raise SweepError(f"results directory {results_dir} is not writable: {exc.strerror}") from None
 
 
-class StudyLock:
-    """Exclusive, non-blocking: a second sweep of the same study refuses to start."""
+def predicted_cost(case: Case) -> float:
+    """Relative cost of a case: its degrees of freedom (the mesh grows as n^2),
+    times the extra solves of the slower methods."""
+    n = float(case.get("n", 16))
+    dofs = n * n * (8.0 if case.get("order", 2) == 2 else 2.0) + 200.0
+    factor = {"fixedpoint": 4.0, "uzawa": 2.0}.get(str(case.get("method", "newton")), 1.0)
+    return dofs * factor
 
-    def __init__(self, path: Path):
-        self.path = path
-        self.handle = None
 
-    def __enter__(self):
-        self.handle = open(self.path, "a+")
+@dataclass
+class Outcome:
+    study: str
+    table: pd.DataFrame
+    ran: int
+    unexpected: list[tuple[str, str]] = field(default_factory=list)  # case_id, status
+    messages: list[str] = field(default_factory=list)
+
+
+class Interrupted(KeyboardInterrupt):
+    """SIGTERM or SIGHUP, handled like Ctrl-C."""
+
+
+def _on_signal(signum, frame):  # noqa: ARG001
+    raise Interrupted(f"signal {signum}")
+
+
+def install_signal_handlers() -> None:
+    for sig in (signal.SIGTERM, signal.SIGHUP):
+        signal.signal(sig, _on_signal)
+    atexit.register(RUNNING.kill_all)
+
+
+def plan(study: str, cases: list[Case], results_dir: Path, force: bool = False,
+         retry_failed: bool = False) -> tuple[list[Case], list[str]]:
+    """The cases still to run (costly first), after repairing the table; messages say
+    what changed. The caller holds the study's lock."""
+    columns = study_columns(freefem.summary_columns())
+    path = study_csv(results_dir, study)
+    unique = list({c.case_id: c for c in cases}.values())
+    frame, messages = table.prepare(path, columns, freefem.edp_hash())
+    ids = {c.case_id for c in unique}
+    redo: set[str] = set()
+    if force:
+        redo = ids & set(frame["case_id"])
+    elif retry_failed:
+        redo = ids & set(frame.loc[frame["status"].isin(RETRY_STATUSES), "case_id"])
+    if redo:
+        table.remove_cases(path, columns, redo)
+        frame = frame[~frame["case_id"].isin(redo)]
+    done = set(frame["case_id"])
+    todo = [c for c in unique if c.case_id not in done]
+    todo.sort(key=predicted_cost, reverse=True)
+    return todo, messages
+
+
+@dataclass
+class Job:
+    """One study to sweep: its name, its cases and the per-case files it keeps."""
+
+    study: str
+    cases: list[Case]
+    keep: tuple[str, ...] = ()
+    repeats: int = 1
+
+
+def run_studies(jobs_list: list[Job], results_dir: Path, jobs: int, timeout: float,
+                force: bool = False, retry_failed: bool = False, progress: bool = False,
+                say=None) -> list[Outcome]:
+    """Sweep several studies under one progress bar, holding their locks throughout."""
+    freefem.check_freefem()
+    check_writable(results_dir)
+    for job in jobs_list:
+        table.check_name(job.study)
+    columns = study_columns(freefem.summary_columns())
+    outcomes = []
+    with ExitStack() as locks:
+        for job in jobs_list:
+            locks.enter_context(table.StudyLock(study_csv(results_dir, job.study).with_suffix(".lock")))
+        plans = []
+        for job in jobs_list:
+            todo, messages = plan(job.study, job.cases, results_dir, force, retry_failed)
+            for message in messages:
+                (say or print)(message)
+            plans.append((job, todo, messages))
+        total = sum(predicted_cost(c) * job.repeats for job, todo, _ in plans for c in todo)
+        bar = tqdm(total=total, disable=not progress, unit="", dynamic_ncols=True,
+                   bar_format="{l_bar}{bar}| {percentage:3.0f}% [{elapsed}<{remaining}]{postfix}")
         try:
-            fcntl.flock(self.handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
-            self.handle.close()
-            raise SweepError(f"another sweep is writing {self.path.with_suffix('.csv').name}; "
-                             "wait for it to finish") from None
-        return self
-
-    def __exit__(self, *exc):
-        fcntl.flock(self.handle, fcntl.LOCK_UN)
-        self.handle.close()
-
-
-def _rewrite(path: Path, frame: pd.DataFrame) -> None:
-    tmp = path.with_suffix(".csv.part")
-    frame.to_csv(tmp, index=False)
-    os.replace(tmp, path)
-
-
-def prepare(path: Path, current_hash: str) -> pd.DataFrame:
-    """Drop a truncated last line (a killed sweep) and move stale rows aside."""
-    if not path.exists():
-        return pd.DataFrame(columns=STUDY_COLUMNS)
-    raw = path.read_bytes()
-    if raw and not raw.endswith(b"\n"):
-        path.write_bytes(raw[: raw.rfind(b"\n") + 1])
-    header = path.read_text().split("\n", 1)[0].split(",")
-    frame = load_study(path) if header == STUDY_COLUMNS else None
-    stale_dir = path.parent / "stale"
-    if frame is None:
-        stale_dir.mkdir(exist_ok=True)
-        os.replace(path, stale_dir / f"{path.stem}-old-columns.csv")
-        return pd.DataFrame(columns=STUDY_COLUMNS)
-    stale = frame["edp_hash"].astype(str) != current_hash
-    if stale.any():
-        stale_dir.mkdir(exist_ok=True)
-        for h, rows in frame[stale].groupby(frame["edp_hash"].astype(str)):
-            rows.to_csv(stale_dir / f"{path.stem}-{h}.csv", index=False)
-        frame = frame[~stale]
-        _rewrite(path, frame)
-    return frame
-
-
-def append_row(path: Path, row: dict) -> None:
-    new = not path.exists() or path.stat().st_size == 0
-    buf = io.StringIO()
-    writer = csv.DictWriter(buf, fieldnames=STUDY_COLUMNS, lineterminator="\n")
-    if new:
-        writer.writeheader()
-    writer.writerow({k: row.get(k) for k in STUDY_COLUMNS})
-    with open(path, "a") as f:
-        f.write(buf.getvalue())
-        f.flush()
-        os.fsync(f.fileno())
+            for job, todo, messages in plans:
+                path = study_csv(results_dir, job.study)
+                ran = _run_all(job.study, todo, path, columns, results_dir / "runs" / job.study,
+                               jobs, timeout, bar, job.repeats)
+                if ran:
+                    record_environment(results_dir)
+                frame = table.read(path)
+                ids = {c.case_id for c in job.cases}
+                mine = frame[frame["case_id"].isin(ids)] if len(frame) else frame
+                if job.keep and len(mine):
+                    gather(job.study, results_dir, mine, job.keep)
+                expected = {c.case_id for c in job.cases if c.expect_converged}
+                unexpected = [(r.case_id, r.status) for r in mine.itertuples()
+                              if r.case_id in expected and r.status != "converged"]
+                outcomes.append(Outcome(job.study, mine, ran, unexpected, messages))
+        finally:
+            bar.close()
+    return outcomes
 
 
 def sweep(study: str, cases: list[Case], results_dir: Path, jobs: int, timeout: float,
-          force: bool = False, progress: bool = True) -> pd.DataFrame:
-    """Run the cases not yet in results/<study>.csv; return the whole study table."""
-    check_freefem()
-    check_writable(results_dir)
-    path = study_csv(results_dir, study)
-    current = edp_hash()
-    unique = list({c.case_id: c for c in cases}.values())
-    with StudyLock(path.with_suffix(".lock")):
-        frame = prepare(path, current)
-        if force:
-            frame = frame[~frame["case_id"].isin([c.case_id for c in unique])]
-            _rewrite(path, frame)
-        done = set(frame["case_id"])
-        todo = [c for c in unique if c.case_id not in done]
-        _run_all(study, todo, path, results_dir / "runs" / study, jobs, timeout, progress)
-    return load_study(path)
+          force: bool = False, retry_failed: bool = False, keep: tuple[str, ...] = ()) -> Outcome:
+    """One study, no progress bar (tests, scripts)."""
+    return run_studies([Job(study, cases, keep)], results_dir, jobs, timeout, force, retry_failed)[0]
 
 
-def _run_all(study, todo, path, workroot, jobs, timeout, progress) -> None:
+def _run_all(study: str, todo: list[Case], path: Path, columns: list[str], workroot: Path,
+             jobs: int, timeout: float, bar: tqdm | None, repeats: int = 1) -> int:
     if not todo:
-        return
-    procs: set = set()
-    failures = 0
-    bar = tqdm(total=len(todo), desc=study, unit="case", disable=not progress, dynamic_ncols=True)
+        return 0
+    summary = freefem.summary_columns()
     pool = ThreadPoolExecutor(max_workers=jobs)
-    pending = {pool.submit(run_case, c, workroot / c.case_id, timeout, study, procs): c for c in todo}
+    pending: dict[Future, Case] = {}
+    done = 0
     try:
+        for case in todo:
+            pending[pool.submit(run_case, case, workroot / case.case_id, timeout, study,
+                                summary, jobs, repeats)] = case
         while pending:
             finished, _ = wait(pending, return_when=FIRST_COMPLETED)
             for future in finished:
-                pending.pop(future)
-                row = future.result()
-                append_row(path, row)
-                failures += row["status"] != "converged"
-                bar.update(1)
-                bar.set_postfix(not_converged=failures)
+                case = pending.pop(future)
+                row = future.result()  # run_case returns a row whatever happened
+                try:
+                    table.append_row(path, row, columns)
+                except table.TableError as exc:
+                    raise SweepError(f"{exc}; the rows written so far are kept") from None
+                done += 1
+                if bar is not None:
+                    bar.update(predicted_cost(case) * repeats)
+                    bar.set_postfix_str(f"{study}: {row['status']}", refresh=False)
     except BaseException:
-        # Ctrl-C or a crash: stop the running cases and record none of them
+        # Ctrl-C, a signal or a full disk: stop the running cases, record none of them
         for future in pending:
             future.cancel()
-        for proc in list(procs):
-            try:
-                os.killpg(proc.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
+        RUNNING.kill_all()
         raise
     finally:
         pool.shutdown(wait=True, cancel_futures=True)
-        bar.close()
+    return done
+
+
+def gather(study: str, results_dir: Path, rows: pd.DataFrame, keep: tuple[str, ...]) -> None:
+    """Collect the kept per-case files of the study's rows into results/<study>/<file>,
+    keeping earlier data of cases whose work directory is gone (a fresh clone)."""
+    target_dir = results_dir / study
+    target_dir.mkdir(exist_ok=True)
+    ids = set(rows["case_id"])
+    for name in keep:
+        target = target_dir / name
+        old = table.read(target) if target.exists() else pd.DataFrame()
+        parts = []
+        fresh = set()
+        for case_id in ids:
+            source = results_dir / "runs" / study / case_id / name
+            if source.exists() and source.stat().st_size > 0:
+                try:
+                    part = pd.read_csv(source)
+                except (ValueError, OSError):
+                    continue
+                parts.append(part.assign(case_id=case_id))
+                fresh.add(case_id)
+        if len(old):
+            parts.insert(0, old[old["case_id"].isin(ids - fresh)])
+        if parts:
+            combined = pd.concat(parts, ignore_index=True)
+            cols = ["case_id"] + [c for c in combined.columns if c != "case_id"]
+            table.write_atomically(target, combined[cols].to_csv(index=False))
+
+
+def _command_output(cmd: list[str]) -> str:
+    try:
+        return subprocess.run(cmd, capture_output=True, text=True, check=False, timeout=30).stdout
+    except (OSError, subprocess.SubprocessError):
+        return ""
+
+
+def record_environment(results_dir: Path) -> None:
+    """What the last sweep ran on, for the report (which runs nothing itself)."""
+    packages = _command_output(["dpkg-query", "-W", "-f=${Package} ${Version}\n", "freefem++",
+                                "libmumps-seq-*"]).split("\n")
+    cpu = next((ln.split(":", 1)[1].strip() for ln in _command_output(["cat", "/proc/cpuinfo"]).splitlines()
+                if ln.startswith("model name")), platform.machine())
+    env = {"date": time.strftime("%Y-%m-%d"),
+           "commit": _command_output(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"]).strip(),
+           "solver code": freefem.edp_hash(),
+           "FreeFEM": next((p.split()[1] for p in packages if p.startswith("freefem++ ")), "unknown"),
+           "MUMPS": next((p.split()[1] for p in packages if p.startswith("libmumps")), "unknown"),
+           "Python": platform.python_version(), "numpy": np.__version__, "pandas": pd.__version__,
+           "CPU": f"{cpu}, {cores()} cores"}
+    table.write_atomically(results_dir / ENVIRONMENT_FILE, pd.DataFrame([env]).to_csv(index=False))
+
+
+def report_unexpected(outcomes: list[Outcome], stream=sys.stderr, limit: int = 20) -> int:
+    """Name the cases that should have converged and did not; return how many."""
+    bad = [(o.study, case_id, status) for o in outcomes for case_id, status in o.unexpected]
+    for study, case_id, status in bad[:limit]:
+        print(f"not converged: {study}/{case_id}: {status}", file=stream)
+    if len(bad) > limit:
+        print(f"... and {len(bad) - limit} more", file=stream)
+    return len(bad)
+
+
+def cores() -> int:
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
