@@ -1,39 +1,45 @@
-# Hertz penalty contact: setup, runs, studies, report, benchmark, tests.
+# Hertz contact: setup, runs, studies, report, benchmark, tests.
 PYTHON ?= python3
 JOBS ?= $(shell nproc)
 
-.PHONY: all setup run sweep rerun sweep-quick report bench test lint clean
+.PHONY: all setup run sweep rerun sweep-quick report bench test lint mutate clean
 
 all: setup sweep                  ## set up, run every study, write the report
 
-setup:                            ## FreeFEM + MUMPS from Debian, path fix, Python packages
+setup:                            ## FreeFEM + MUMPS from Debian, path fix, the Python package (pip install -e .)
 	bash driver/setup.sh
 
-run:                              ## the seed case, P2, with files in results/default
-	cd edp && FreeFem++ -nw -v 0 hertz.edp -kpen 1e5 -out ../results/default
+run:                              ## the seed case, with its files in results/local/default
+	cd edp && FreeFem++ -nw -v 0 hertz.edp -kpen 1e5 -out ../results/local/default
 
-sweep:                            ## every study (resumable), then the report
+sweep:                            ## every study (resumable: only missing or stale rows run), then the report
 	$(PYTHON) -m driver sweep --all --jobs $(JOBS)
 	$(PYTHON) -m driver report
 
-rerun:                            ## every study recomputed from scratch (--force), then the report
+rerun:                            ## every study recomputed from scratch, then the report
 	$(PYTHON) -m driver sweep --all --force --jobs $(JOBS)
 	$(PYTHON) -m driver report
 
-sweep-quick:                      ## the small subset used by the tests and CI
-	$(PYTHON) -m driver sweep --all --quick --jobs $(JOBS)
+sweep-quick:                      ## the quick subsets, into results/local/quick (not tracked)
+	$(PYTHON) -m driver sweep --all --quick --jobs $(JOBS) --results results/local/quick
 
-report:                           ## charts and results/REPORT.md from results/*.csv
+report:                           ## charts and results/REPORT.md from results/*.csv (no FreeFEM needed)
 	$(PYTHON) -m driver report
 
-bench:                            ## timings: medians of 5 runs, ratios
+bench:                            ## timings: medians of interleaved runs, peers included (results/local/bench.csv)
+	bash driver/setup.sh --peers
 	$(PYTHON) -m driver bench
 
-test:                             ## the test suite (runs the quick sweep if results are missing)
+test:                             ## the test suite (about 3 minutes on 2 cores; writes nothing tracked)
 	$(PYTHON) -m pytest -q tests
 
-lint:                             ## FreeFEM compile-only check
+lint:                             ## FreeFEM compiles, ruff and mypy are clean
 	cd edp && FreeFem++ -jc -nw -v 0 hertz.edp
+	$(PYTHON) -m ruff check driver tests bench
+	$(PYTHON) -m mypy driver
 
-clean:                            ## remove per-case work directories (keeps the study CSVs)
-	rm -rf results/runs results/default
+mutate:                           ## break the guarded code on purpose, one mutation at a time; each must fail a test
+	$(PYTHON) tests/mutations.py
+
+clean:                            ## remove per-case work directories and local outputs (keeps the study tables)
+	rm -rf results/runs results/local

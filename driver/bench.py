@@ -1,91 +1,141 @@
-"""Benchmark: medians of repeated runs, one at a time, and the ratios the targets name.
+"""Benchmark: medians of interleaved runs, one at a time, and the ratios the targets name.
 
-Times are wall-clock seconds of whole FreeFEM processes (what a user waits for);
-the solver's own CPU breakdown comes from summary.csv.
+Times are wall-clock seconds of whole processes (what a user waits for); the
+solver's CPU breakdown comes from summary.csv. Configurations run in turn
+(A B C ... A B C ...), so a slow spell of the machine touches all of them.
+The table goes to an untracked file (results/local/bench.csv by default).
 """
 from __future__ import annotations
 
+import json
+import shutil
 import statistics
 import subprocess
+import sys
 import tempfile
 import time
 from pathlib import Path
 
 import pandas as pd
 
+from driver import ROOT, freefem
 from driver.cases import Case
-from driver.run import freefem_command, freefem_env, run_case
+from driver.run import run_case
 
 CONFIGS = {
-    "default (P2, n=16, kpen=1e5)": Case(),
-    "accurate (P2, n=20, kpen=100 E*/h)": Case(n=20).with_(kpen=float(f"{Case(n=20).scaled_kpen(100):.6g}")),
-    "auglag (P2, n=16, kpen=1e5)": Case(method="auglag"),
-    "penalty (P2, n=32, kpen=1e5)": Case(n=32),
-    "auglag (P2, n=32, kpen=1e5)": Case(method="auglag", n=32),
-    "penalty kpen=1e9 (P2, n=16)": Case(kpen=1e9),
-    "fixed point (P2, n=16, kpen=30)": Case(method="fixedpoint", kpen=30.0),
+    "default (newton P2, n=16, gamma=100)": Case(),
+    "seed command (-kpen 1e5)": Case.of(kpen=1e5),
+    "lagrange (P2, n=16)": Case.of(method="lagrange"),
+    "uzawa (P2, n=16)": Case.of(method="uzawa"),
+    "newton P2, n=32": Case.of(n=32),
+    "lagrange P2, n=32": Case.of(method="lagrange", n=32),
+    "-accuracy 0.001": Case.of(accuracy=0.001),
+    "-accuracy 0.01": Case.of(accuracy=0.01),
+    "SI steel ball": Case.of(E=210e9, R=0.01, d=1e-5),
+    "plane (cylinder)": Case.of(model="plane"),
 }
+FENICS = ROOT / "bench" / "fenics_peer.py"
+DEBIAN_PYTHON = "/usr/bin/python3"  # python3-dolfin is a Debian package
 
 
 def direct_run(case: Case, outdir: Path) -> tuple[float, dict]:
-    cmd = freefem_command(case.args(), outdir)
+    cmd = freefem.command(case.args() + ["-out", str(outdir)])
     start = time.perf_counter()
-    subprocess.run(cmd, capture_output=True, env=freefem_env(), check=False)
+    subprocess.run(cmd, capture_output=True, env=freefem.freefem_env(), check=False)
     wall = time.perf_counter() - start
     return wall, pd.read_csv(outdir / "summary.csv").iloc[0].to_dict()
 
 
-def bench(results_dir: Path, repeat: int = 5) -> int:
-    rows = []
-    with tempfile.TemporaryDirectory() as tmp:
-        out = Path(tmp)
-        for name, case in CONFIGS.items():
-            walls, summary = [], None
-            for _ in range(repeat):
-                wall, summary = direct_run(case, out)
-                walls.append(wall)
-            rows.append({
-                "configuration": name, "wall_median_s": statistics.median(walls),
-                "wall_min_s": min(walls), "iterations": summary["iterations"],
-                "factorizations": summary["factorizations"], "resolves": summary["resolves"],
-                "status": summary["status"],
-                "ndof": summary["ndof"], "t_solve_cpu": summary["t_solve"],
-                "t_linear_one_cpu": summary["t_linear_one"],
-                "solve_over_one_linear_solve": summary["t_solve"] / summary["t_linear_one"],
-                "max_abs_err": max(abs(summary[k]) for k in ("err_p0", "err_F", "err_a")),
-                "penetration_over_d": summary["penetration_over_d"],
-                "nodal_penetration_over_d": summary["nodal_penetration_over_d"],
-            })
-        # driver overhead: the same case through run_case and directly
-        direct = [direct_run(Case(), out)[0] for _ in range(repeat)]
-        through = []
-        for _ in range(repeat):
-            start = time.perf_counter()
-            run_case(Case(), out / "driver", timeout=600)
-            through.append(time.perf_counter() - start)
-        newton = []
-        for k in [10.0**e for e in range(1, 10)]:
-            _, s = direct_run(Case(kpen=k), out)
-            newton.append({"kpen": k, "iterations": s["iterations"], "status": s["status"]})
+def fenics_run() -> tuple[float, dict] | None:
+    """The FEniCS peer (bench/fenics_peer.py), if dolfin is installed."""
+    if not FENICS.exists() or not shutil.which(DEBIAN_PYTHON):
+        return None
+    start = time.perf_counter()
+    proc = subprocess.run([DEBIAN_PYTHON, str(FENICS)], capture_output=True, text=True, check=False)
+    wall = time.perf_counter() - start
+    if proc.returncode != 0:
+        return None
+    return wall, json.loads(proc.stdout.strip().splitlines()[-1])
 
+
+def bench(out: Path, repeat: int = 5) -> int:
+    walls: dict[str, list[float]] = {name: [] for name in CONFIGS}
+    summaries: dict[str, dict] = {}
+    fenics_walls, fenics_row = [], None
+    with tempfile.TemporaryDirectory() as tmp:
+        root = Path(tmp)
+        for _ in range(repeat):
+            for name, case in CONFIGS.items():
+                wall, summaries[name] = direct_run(case, root)
+                walls[name].append(wall)
+            peer = fenics_run()
+            if peer is not None:
+                fenics_walls.append(peer[0])
+                fenics_row = peer[1]
+        # driver overhead: the default case through run_case and directly
+        direct, through = [], []
+        for _ in range(repeat):
+            direct.append(direct_run(Case(), root)[0])
+            start = time.perf_counter()
+            run_case(Case(), root / "driver", timeout=600)
+            through.append(time.perf_counter() - start)
+        # Newton from each start over the penalty (iterations, all levels)
+        starts = []
+        for gamma in [10.0**k for k in range(-2, 7)]:
+            for order in (1, 2):
+                for start_name in ("coarse", "zero", "hertz"):
+                    _, s = direct_run(Case.of(gamma=gamma, order=order, start=start_name), root)
+                    starts.append({"gamma": gamma, "order": order, "start": start_name, "status": s["status"],
+                                   "iterations": s["iterations"],
+                                   "all_levels": s["iterations"] + s["coarse_iterations"],
+                                   "factorizations": s["factorizations"], "p0_fe": s["p0_fe"]})
+
+    rows = []
+    for name, s in summaries.items():
+        rows.append({"configuration": name, "wall_median_s": statistics.median(walls[name]),
+                     "wall_min_s": min(walls[name]), "status": s["status"], "n": s["n"], "ndof": s["ndof"],
+                     "iterations": s["iterations"], "all_levels": s["iterations"] + s["coarse_iterations"],
+                     "factorizations": s["factorizations"], "t_solve_cpu": s["t_solve"],
+                     "solve_over_one_linear_solve": s["t_solve"] / s["t_linear_one"] if s["t_linear_one"] else None,
+                     "max_abs_err": max(abs(s[k]) for k in ("err_p0", "err_F", "err_a") if s[k] == s[k]),
+                     "est_max_err": s["accuracy_predicted"],
+                     "nodal_penetration_over_d": s["nodal_penetration_over_d"]})
+    if fenics_row is not None:
+        rows.append({"configuration": f"FEniCS peer (P2, n={fenics_row['n']}, L={fenics_row['L']}, "
+                                      f"kpen={fenics_row['kpen']:g})",
+                     "wall_median_s": statistics.median(fenics_walls), "wall_min_s": min(fenics_walls),
+                     "status": "converged", "n": fenics_row["n"], "ndof": fenics_row["ndof"],
+                     "iterations": fenics_row["newton_iterations"],
+                     "max_abs_err": max(abs(fenics_row[k]) for k in ("err_p0", "err_F", "err_a"))})
     table = pd.DataFrame(rows)
-    by = table.set_index("configuration")
-    auglag_ratio = {n: by.loc[f"auglag (P2, n={n}, kpen=1e5)", "wall_median_s"]
-                    / by.loc[penalty, "wall_median_s"]
-                    for n, penalty in [(16, "default (P2, n=16, kpen=1e5)"),
-                                       (32, "penalty (P2, n=32, kpen=1e5)")]}
-    overhead = (statistics.median(through) - statistics.median(direct)) / statistics.median(direct)
-    results_dir.mkdir(parents=True, exist_ok=True)
-    table.to_csv(results_dir / "bench.csv", index=False)
-    pd.set_option("display.width", 200)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    table.to_csv(out, index=False)
+    starts_table = pd.DataFrame(starts)
+    starts_table.to_csv(out.with_name("bench_starts.csv"), index=False)
+    by = table.set_index("configuration")["wall_median_s"]
+    pd.set_option("display.width", 220)
     print(table.drop(columns=["wall_min_s"]).to_string(index=False, float_format=lambda v: f"{v:.4g}"))
     print()
-    print("auglag / plain penalty wall time (same mesh): "
-          + ", ".join(f"n={n}: {r:.2f}" for n, r in auglag_ratio.items()))
+    ratio16 = by["lagrange (P2, n=16)"] / by["default (newton P2, n=16, gamma=100)"]
+    ratio32 = by["lagrange P2, n=32"] / by["newton P2, n=32"]
+    print(f"lagrange / newton wall time: n=16 {ratio16:.2f}, n=32 {ratio32:.2f}")
+    if fenics_row is not None:
+        peer = [c for c in by.index if c.startswith("FEniCS")][0]
+        print(f"FEniCS peer / -accuracy 0.001: {by[peer] / by['-accuracy 0.001']:.1f}x")
+    overhead = (statistics.median(through) - statistics.median(direct)) / statistics.median(direct)
     print(f"driver overhead per case (default case, median of {repeat}): {overhead:+.1%} "
           f"(direct {statistics.median(direct):.3f} s, through the driver {statistics.median(through):.3f} s)")
-    print("Newton iterations at the default mesh, kpen 1e1..1e9: "
-          + ", ".join(f"{r['iterations']:.0f}" for r in newton)
-          + f" (all converged: {all(r['status'] == 'converged' for r in newton)})")
-    print(f"written: {results_dir / 'bench.csv'}")
+    pivot = starts_table.pivot_table(index=["order", "start"], columns="gamma", values="all_levels", aggfunc="first")
+    print("\nNewton iterations over all levels, by start and gamma = kpen h/E*:")
+    print(pivot.to_string())
+    coarse = starts_table[starts_table["start"] == "coarse"]
+    hertz = starts_table[starts_table["start"] == "hertz"].set_index(["gamma", "order"])
+    worst = max(abs(r.p0_fe / hertz.loc[(r.gamma, r.order), "p0_fe"] - 1) for r in coarse.itertuples())
+    print(f"coarse start against the Hertz start: p0 differs by at most {worst:.1e}; "
+          f"fine-level factorizations at most {coarse['factorizations'].max():.0f}")
+    print(f"written: {out} and {out.with_name('bench_starts.csv')}")
     return 0
+
+
+if __name__ == "__main__":
+    sys.exit(bench(ROOT / "results" / "local" / "bench.csv"))

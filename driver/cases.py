@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import hashlib
 from dataclasses import dataclass, replace
-from typing import Any, Union
+from typing import Any
 
-Value = Union[int, float, str]
+Value = int | float | str
 
 
 def exact(value: Value) -> str:
@@ -33,16 +33,15 @@ class Case:
     expect_converged: bool = True  # False for cases that probe where methods fail
 
     @classmethod
-    def of(cls, variant: str = "", expect_converged: bool = True, **params: Value) -> "Case":
-        return cls(tuple(sorted(params.items())), variant, expect_converged)
+    def of(cls, **params: Value) -> Case:
+        return cls(tuple(sorted(params.items())))
 
-    def with_(self, variant: str | None = None, expect_converged: bool | None = None,
-              **changes: Value) -> "Case":
-        params = dict(self.params) | changes
-        return replace(self, params=tuple(sorted(params.items())),
-                       variant=self.variant if variant is None else variant,
-                       expect_converged=self.expect_converged if expect_converged is None
-                       else expect_converged)
+    def with_(self, **changes: Value) -> Case:
+        """The same case with some options changed (or added)."""
+        return replace(self, params=tuple(sorted((dict(self.params) | changes).items())))
+
+    def labelled(self, variant: str, expect_converged: bool = True) -> Case:
+        return replace(self, variant=variant, expect_converged=expect_converged)
 
     def get(self, name: str, default: Any = None) -> Any:
         return dict(self.params).get(name, default)

@@ -91,7 +91,7 @@ class Option:
         return [w.strip() for w in self.range.split(",")] if self.kind == "word" else None
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _options(fingerprint: str) -> tuple[Option, ...]:
     text = _query("-options")
     lines = text.splitlines()
@@ -106,7 +106,7 @@ def options() -> dict[str, Option]:
     return {o.name: o for o in _options(edp_hash())}
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _columns(fingerprint: str) -> tuple[str, ...]:
     for line in _query("-columns").splitlines():
         if line.startswith("model,"):

@@ -73,6 +73,8 @@ def kill_case(token: str, pgid: int | None = None) -> int:
             killed += 1
         except (ProcessLookupError, PermissionError):
             continue
+        if pid == pgid:
+            continue  # the solver itself: run_case's own wait reaps it
         try:
             os.waitpid(pid, 0)  # an orphan handed to this subreaper: no zombie left
         except ChildProcessError:
@@ -174,7 +176,8 @@ def _status(exit_code: int, summary: dict | None, why: str) -> tuple[str, str]:
     return status, f"{status} after {summary.get('iterations')} iterations, residual {summary.get('residual')}"
 
 
-def _last_error(log: Path) -> str:
+def _solver_error(log: Path) -> str:
+    """The solver's own error line (hertz.edp's, or FreeFEM's), if it printed one."""
     try:
         lines = [ln.strip() for ln in log.read_text(errors="replace").splitlines() if ln.strip()]
     except OSError:
@@ -182,10 +185,18 @@ def _last_error(log: Path) -> str:
     for line in lines:
         if line.startswith("hertz.edp: error:"):
             return line[:300]
-    for line in reversed(lines):
-        if "error" in line.lower():
+    for line in lines:
+        if line.startswith(("Exec error", "Compile error", "Error line")) or "Error" in line.split(":")[0]:
             return line[:300]
-    return lines[-1][:300] if lines else ""
+    return ""
+
+
+def _last_output(log: Path) -> str:
+    try:
+        lines = [ln.strip() for ln in log.read_text(errors="replace").splitlines() if ln.strip()]
+    except OSError:
+        return ""
+    return lines[-1][:200] if len(lines) > 1 else ""  # the first line is the command
 
 
 def run_case(case: Case, workdir: Path, timeout: float, study: str = "",
@@ -248,14 +259,14 @@ def _run(case: Case, workdir: Path, timeout: float, columns: list[str]) -> dict:
     try:
         # a blocking wait returns the moment the solver exits (Popen.wait with
         # a timeout polls, up to 50 ms late), and wait4 gives its peak memory
-        _, status, usage = os.wait4(proc.pid, 0)
-        proc.returncode = os.waitstatus_to_exitcode(status)
+        _, wait_status, usage = os.wait4(proc.pid, 0)
+        proc.returncode = os.waitstatus_to_exitcode(wait_status)
     finally:
         timer.cancel()
         kill_case(token, proc.pid)  # helpers left in its group or detached
         RUNNING.discard(token)
         (workdir / PID_FILE).unlink(missing_ok=True)
-    out: dict = {"exit_code": proc.returncode, "max_rss_mb": usage.ru_maxrss / 1024}
+    out: dict[str, object] = {"exit_code": proc.returncode, "max_rss_mb": usage.ru_maxrss / 1024}
     if timed_out.is_set():
         out.update(status="timeout", error=f"no result after {timeout:g} s")
         return out
@@ -263,7 +274,9 @@ def _run(case: Case, workdir: Path, timeout: float, columns: list[str]) -> dict:
     status, error = _status(proc.returncode, summary, why)
     if summary is not None:
         out.update(summary)
-    if status == "failed" and proc.returncode in (1, 2, 4):  # the solver says why
-        error = _last_error(log_path) or error
+    if status == "failed":
+        error = _solver_error(log_path) or error
+        if summary is None and not error.startswith("hertz.edp"):
+            error = f"{error}; last output: {_last_output(log_path)}"
     out.update(status=status, error=error)
     return out

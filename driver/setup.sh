@@ -1,17 +1,30 @@
 #!/usr/bin/env bash
 # One-time setup on Debian: FreeFEM with its plugins and includes, the fix for
-# the Debian package's plugin/include paths, and the Python packages.
+# the Debian package's plugin/include paths, and this project as a Python
+# package (pip install -e ".[test,lint]": the `hertz` command and the test
+# tools). With --peers, also the peer codes the benchmark compares against.
 # Idempotent; quick when everything is already there.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 
 as_root() { if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi; }
+apt_install() {
+  as_root apt-get update -qq
+  as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "$@" >/dev/null
+}
+
+if [ "${1:-}" = "--peers" ]; then
+  if ! /usr/bin/python3 -c "import dolfin, gmsh" 2>/dev/null; then
+    echo "setup: installing FEniCS 2019 and gmsh (python3-dolfin, python3-gmsh) for the peer benchmark"
+    apt_install python3-dolfin python3-gmsh
+  fi
+  exit 0
+fi
 
 if ! command -v FreeFem++ >/dev/null || [ ! -e /usr/lib/freefem++/MUMPS_seq.so ] \
    || [ ! -e /usr/include/freefem++/idp/getARGV.idp ]; then
   echo "setup: installing FreeFEM from Debian packages"
-  as_root apt-get update -qq
-  as_root env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq freefem++ libfreefem++ libfreefem++-dev >/dev/null
+  apt_install freefem++ libfreefem++ libfreefem++-dev
 fi
 
 # Debian's /etc/freefem++.pref points at /usr/lib/ff++/4.9/{lib,idp}, which do
@@ -23,14 +36,15 @@ if [ -w "$pref" ] || [ "$(id -u)" = 0 ]; then
 fi
 
 py="${PYTHON:-python3}"
-if ! "$py" -c "import numpy, pandas, matplotlib, tqdm, pytest, hypothesis" 2>/dev/null; then
-  echo "setup: installing Python packages"
+if ! "$py" -c "import driver, pytest, hypothesis, meshio, ruff, mypy" 2>/dev/null || ! command -v hertz >/dev/null; then
+  echo "setup: installing the Python package and its test tools"
   # Debian's own Python refuses pip installs into the system (PEP 668)
-  "$py" -m pip install -q -r "$root/requirements.txt" 2>/dev/null \
-    || "$py" -m pip install -q --break-system-packages -r "$root/requirements.txt"
+  "$py" -m pip install -q -e "$root[test,lint]" 2>/dev/null \
+    || "$py" -m pip install -q --break-system-packages -e "$root[test,lint]"
 fi
 
 # smoke test: the solver loads its plugins and runs a coarse case
-(cd "$root/edp" && FreeFem++ -nw -v 0 hertz.edp -n 4 -L 50 >/dev/null) \
-  || { echo "setup: FreeFEM smoke test failed" >&2; exit 1; }
+rc=0
+(cd "$root/edp" && FreeFem++ -nw -v 0 hertz.edp -n 8 >/dev/null) || rc=$?
+[ $rc -eq 0 ] || { echo "setup: FreeFEM smoke test failed (exit $rc)" >&2; exit 1; }
 echo "setup: ok ($(FreeFem++ -nw -v 0 2>&1 | grep -o 'version [0-9.]*' | head -1 || true))"

@@ -13,9 +13,9 @@ import itertools
 import json
 import math
 import tomllib
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable
 
 from driver import freefem
 from driver.cases import Case, Value
@@ -25,7 +25,7 @@ DECADES = [10.0**k for k in range(1, 10)]            # absolute kpen on the seed
 GAMMAS = [10.0**k for k in range(-2, 7)]             # kpen in units of E*/h
 
 
-def grid(base: Case, **axes: list[Value]) -> list[Case]:
+def grid(base: Case, **axes: Sequence[Value]) -> list[Case]:
     """All combinations of the given values, on top of base."""
     names = list(axes)
     return [base.with_(**dict(zip(names, combo)))
@@ -34,7 +34,7 @@ def grid(base: Case, **axes: list[Value]) -> list[Case]:
 
 def labelled(cases: list[Case], label: Callable[[Case], str],
              expect: Callable[[Case], bool] = lambda c: True) -> list[Case]:
-    return [c.with_(variant=label(c), expect_converged=expect(c)) for c in cases]
+    return [c.labelled(label(c), expect(c)) for c in cases]
 
 
 def method_label(c: Case) -> str:
@@ -52,9 +52,10 @@ def kpen_study(quick: bool) -> list[Case]:
                   kpen=[1e1, 1e3] if quick else decades)
     # a soft penalty leaves a large penetration (inaccurate), Uzawa is slow
     # below ~E*/h and the lagged fixed point diverges beyond ~45: probes
+    # (P1 at n = 16 is 4% off and says so: inaccurate)
     return labelled(cases, method_label,
-                    lambda c: c.get("method") == "lagrange"
-                    or (c.get("method") == "newton" and c.get("kpen") >= 1e5))
+                    lambda c: c.get("order") == 2 and (c.get("method") == "lagrange"
+                                                      or (c.get("method") == "newton" and c.get("kpen") >= 1e5)))
 
 
 def mesh_study(quick: bool) -> list[Case]:
@@ -71,14 +72,16 @@ def mesh_study(quick: bool) -> list[Case]:
         cases += labelled(grid(Case(), method=["lagrange"], order=[order], n=values),
                           lambda c: f"lagrange P{c.get('order')}")
     # coarse meshes are expected to be off by more than 1% (inaccurate)
-    return [c.with_(expect_converged=False) for c in cases]
+    return [c.labelled(c.variant, False) for c in cases]
 
 
 def domain_study(quick: bool) -> list[Case]:
     """The clamped boundary's bias on F against the domain radius, with exact contact."""
     Ls = [20.0, 100.0, 1000.0, 5000.0] if quick else \
         [10.0, 20.0, 50.0, 100.0, 200.0, 500.0, 1000.0, 2000.0, 5000.0, 20000.0]
-    return labelled(grid(Case(), method=["lagrange"], L=Ls), lambda c: "lagrange P2")
+    # below L = 200 a the clamped boundary's bias passes 1%: inaccurate, and said so
+    return labelled(grid(Case(), method=["lagrange"], L=Ls), lambda c: "lagrange P2",
+                    lambda c: c.get("L") >= 200)
 
 
 def plane_study(quick: bool) -> list[Case]:
@@ -105,10 +108,14 @@ def stability_study(quick: bool) -> list[Case]:
     else:
         cases = grid(fp, n=[8, 16, 32], omega=[0.1, 0.2, 0.5, 1.0, 1.5],
                      kpen=[3.0, 10.0, 30.0, 100.0, 300.0, 1000.0, 1e4])
-        newton = grid(Case(), start=["coarse", "zero", "hertz"], linesearch=[1, 0], cont=[0, 1],
-                      gamma=GAMMAS)
-        newton += grid(Case(), order=[1], start=["coarse", "zero", "hertz"], gamma=GAMMAS)
-        exact = grid(Case(), method=["lagrange", "uzawa"], order=[1, 2], gamma=GAMMAS)
+        # options at their defaults are left out, so that quick cases are the same cases
+        newton = []
+        extras: list[dict[str, Value]] = [{}, {"linesearch": 0}, {"cont": 1}, {"linesearch": 0, "cont": 1},
+                                          {"order": 1}]
+        for extra in extras:
+            newton += grid(Case().with_(**extra), start=["coarse", "zero", "hertz"], gamma=GAMMAS)
+        exact = grid(Case(), method=["lagrange", "uzawa"], gamma=GAMMAS)
+        exact += grid(Case.of(order=1), method=["lagrange", "uzawa"], gamma=GAMMAS)
     cases = labelled(cases, lambda c: f"fixedpoint n={c.get('n')}", lambda c: False)
 
     def newton_label(c: Case) -> str:
@@ -131,7 +138,8 @@ def speed_study(quick: bool) -> list[Case]:
     else:
         cases = grid(Case(), order=[1, 2], n=[4, 8, 16, 32, 64])
         cases += grid(Case(), order=[1], n=[128])
-        cases += grid(Case(), method=["lagrange"], order=[1, 2], n=[4, 8, 16, 32, 64])
+        cases += grid(Case(), method=["lagrange"], n=[4, 8, 16, 32, 64])
+        cases += grid(Case.of(order=1), method=["lagrange"], n=[4, 8, 16, 32, 64])
         cases += grid(Case(), method=["uzawa"], n=[4, 8, 16, 32, 64])
         cases += grid(Case(), kpen=[1e5], n=[8, 16, 32, 64])
         cases += grid(Case(), method=["fixedpoint"], kpen=[30.0], n=[8, 16])
@@ -140,7 +148,7 @@ def speed_study(quick: bool) -> list[Case]:
 
 # The same dimensionless scene in several unit systems: E, R and d scaled so
 # that E*, d/R and the mesh are the same scene (relative errors must agree).
-UNIT_SYSTEMS = {"seed": (1.0, 1.0), "SI (Pa, m)": (1e9, 1e-3), "mm, N, MPa": (1e3, 1.0)}
+UNIT_SYSTEMS = {"seed units": (1.0, 1.0), "SI": (1e9, 1e-3), "mm-N-MPa": (1e3, 1.0)}
 SCENES = {"seed sphere": dict(E=10.0, nu=0.3, R=0.5, d=0.02),
           "steel ball": dict(E=210.0, nu=0.3, R=10.0, d=0.01),
           "rubber": dict(E=0.002, nu=0.49, R=5.0, d=0.2)}
@@ -155,7 +163,7 @@ def units_study(quick: bool) -> list[Case]:
             s = SCENES[scene]
             base = Case.of(E=s["E"] * stress, nu=s["nu"], R=s["R"] * length, d=s["d"] * length)
             for method in (["newton"] if quick else ["newton", "lagrange"]):
-                cases.append(base.with_(method=method, variant=f"{scene}, {method}, {units}"))
+                cases.append(base.with_(method=method).labelled(f"{scene}, {method}, {units}"))
     return cases
 
 
@@ -166,7 +174,7 @@ def figures_study(quick: bool) -> list[Case]:
                      lambda c: f"profile P{c.get('order')}", lambda c: False)
     cases += labelled(grid(Case(), kpen=[1e1, 1e2, 1e3, 1e5]), lambda c: "seed figure",
                       lambda c: False)
-    cases += [Case.of(method="lagrange", variant="axis")]
+    cases += [Case.of(method="lagrange").labelled("axis")]
     return cases
 
 
@@ -228,7 +236,7 @@ def load_spec(path: Path) -> tuple[str, list[Case]]:
     if not axes:
         raise SpecError(f"spec {path}: [grid] must list at least one parameter")
     count = math.prod(len(v) for v in axes.values())
-    return name, labelled(grid(Case.of(**base), **axes), lambda c: name) if count else []
+    return name, labelled(grid(Case().with_(**base), **axes), lambda c: name) if count else []
 
 
 def _table(path: Path, data: dict, key: str) -> dict:

@@ -17,6 +17,7 @@ import re
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import IO
 
 import pandas as pd
 
@@ -41,19 +42,20 @@ class StudyLock:
 
     def __init__(self, path: Path):
         self.path = path
-        self.handle = None
+        self.handle: IO[str] | None = None
 
-    def __enter__(self) -> "StudyLock":
+    def __enter__(self) -> StudyLock:
         try:
-            self.handle = open(self.path, "a+")
+            handle = open(self.path, "a+")
         except OSError as exc:
             raise TableError(f"cannot create the lock {self.path}: {exc.strerror}") from None
         try:
-            fcntl.flock(self.handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
-            self.handle.close()
+            handle.close()
             raise TableError(f"another sweep is writing {self.path.with_suffix('.csv').name}; "
                              "wait for it to finish") from None
+        self.handle = handle
         return self
 
     def __exit__(self, *exc) -> None:

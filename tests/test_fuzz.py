@@ -1,4 +1,4 @@
-"""Property-based: random options and spec files give a valid result or a clear error."""
+"""Property-based: random options, spec files and command lines give a valid result or one clear error."""
 import math
 import subprocess
 import tempfile
@@ -8,53 +8,61 @@ import pandas as pd
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from driver.run import freefem_command, freefem_env
+from driver import freefem
+from driver.cli import build_parser
 from driver.studies import SpecError, load_spec
 
-NUMERIC = ["-kpen", "-E", "-nu", "-R", "-d", "-omega", "-L", "-n", "-order", "-maxit", "-tol"]
-WORDS = {"-model": ["axi", "plane"], "-method": ["newton", "fixedpoint", "auglag"]}
+NUMERIC = ["-kpen", "-gamma", "-E", "-nu", "-R", "-d", "-omega", "-L", "-n", "-order", "-maxit", "-tol"]
+WORDS = {"-model": ["axi", "plane", "auto"], "-method": ["newton", "fixedpoint", "uzawa", "lagrange"],
+         "-start": ["coarse", "zero", "hertz"]}
+OPTIONS = NUMERIC + list(WORDS)
 
 values = st.one_of(
     st.sampled_from(["0", "-1", "nan", "inf", "-inf", "1e400", "1e-400", "abc", "", "1e5x",
-                     "0x10", "1,5", "--", "2", "0.3", "1e5", "0.49", "-0.5", "3"]),
+                     "0x10", "1,5", "--", "2", "0.3", "1e5", "0.49", "-0.5", "3", "sphere"]),
     st.floats(allow_nan=True, allow_infinity=True).map(repr),
     st.integers(-10, 10**6).map(str),
+    st.sampled_from([w for ws in WORDS.values() for w in ws]),
 )
-option = st.tuples(st.sampled_from(NUMERIC + list(WORDS)), st.one_of(values, st.sampled_from(
-    ["axi", "plane", "newton", "fixedpoint", "auglag", "sphere"])))
-command = st.lists(option, min_size=1, max_size=3)
+command = st.lists(st.tuples(st.sampled_from(OPTIONS), values), min_size=1, max_size=3)
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(command, st.booleans())
-def test_random_options_give_a_result_or_a_named_error(opts, drop_last_value):
+def test_random_options_give_a_result_or_one_error_naming_an_option_given(opts, drop_last_value):
     args = ["-n", "4", "-L", "50"] if all(o != "-n" for o, _ in opts) else []
     for name, value in opts:
         args += [name, value]
     if drop_last_value:
-        args = args[:-1]  # a missing value
+        args = args[:-1]  # the last option has no value: nothing follows it
     with tempfile.TemporaryDirectory() as out:
-        proc = subprocess.run(freefem_command(args, Path(out)),
-                              capture_output=True, text=True, env=freefem_env(), timeout=300)
-        errors = [ln for ln in proc.stdout.splitlines() if ln.startswith("hertz.edp: error:")]
+        # -out goes first, so it cannot stand in for a missing value
+        proc = subprocess.run(freefem.command(["-out", out] + args), capture_output=True, text=True,
+                              env=freefem.freefem_env(), timeout=300)
         if proc.returncode == 2:
-            assert len(errors) == 1
-            named = [o for o in NUMERIC + list(WORDS) if o in errors[0]] or ["unknown option"]
-            assert named and any(a in errors[0] for a in args if a.startswith("-")) \
-                or "unknown option" in errors[0] or "needs a value" in errors[0]
+            lines = proc.stderr.strip().splitlines()
+            assert len(lines) == 1 and lines[0].startswith("hertz.edp: error: "), proc.stderr
+            given_names = {a for a in args if a.startswith("-") and a in OPTIONS + ["-out"]}
+            # the message names an option of this command line, or the scale it set
+            assert any(n in lines[0] for n in given_names) or "scale" in lines[0], (args, lines[0])
+            if drop_last_value and args[-1] in OPTIONS and "needs a value" in lines[0]:
+                assert args[-1] in lines[0]
             assert not any(Path(out).iterdir())
             return
-        assert proc.returncode in (0, 3), proc.stdout[-2000:]
+        assert proc.returncode in (0, 3, 5), proc.stdout[-2000:]
         s = pd.read_csv(Path(out) / "summary.csv").iloc[0]
-        if proc.returncode == 0:
-            assert s["status"] == "converged"
+        expected = {0: {"converged"}, 5: {"inaccurate"}, 3: {"diverged", "maxiter", "roundoff", "stalled"}}
+        assert s["status"] in expected[proc.returncode]
+        if proc.returncode in (0, 5):
             for key in ("p0_fe", "F_fe", "a_fe"):
                 assert math.isfinite(s[key]) and s[key] > 0
-        else:
-            assert s["status"] in ("diverged", "maxiter")
+        if proc.returncode == 0 and s["model"] == "axi":
+            # a success is near Hertz, within what its own estimate allows
+            worst = max(abs(s["err_p0"]), abs(s["err_F"]), abs(s["err_a"]))
+            assert worst <= max(0.01, 3 * s["accuracy_predicted"]), (args, worst)
 
 
-keys = st.sampled_from(["n", "kpen", "order", "model", "method", "E", "nope", "L", "cont"])
+keys = st.sampled_from(["n", "kpen", "order", "model", "method", "E", "nope", "L", "cont", "out"])
 spec_values = st.one_of(st.integers(-5, 50), st.floats(allow_nan=True), st.text(max_size=5),
                         st.booleans(), st.lists(st.integers(1, 4), max_size=3))
 
@@ -82,18 +90,19 @@ def test_random_spec_files_define_cases_or_name_the_problem(grid, base):
             name, cases = load_spec(spec)
         except SpecError as exc:
             text = str(exc)
-            assert "spec" in text and ("grid" in text or "base" in text or any(k in text for k in
-                   list(grid) + list(base)) or "cannot read" in text)
+            assert text.startswith(f"spec {spec}: ")
+            assert "cannot read" in text or "[grid]" in text or any(k in text for k in list(grid) + list(base))
             return
         assert name == "fuzz" and cases
         for case in cases:
-            assert isinstance(case.n, int) and isinstance(case.model, str)
-            assert all(math.isfinite(getattr(case, f)) for f in ("kpen", "E", "L"))
+            assert "out" not in dict(case.params)
+            assert all(math.isfinite(v) for k, v in case.params if isinstance(v, float))
 
 
-cli_tokens = st.sampled_from(["run", "sweep", "report", "bench", "--kpen", "--order", "--n", "--jobs",
-                              "--timeout", "--quick", "--all", "--spec", "--force", "kpen", "mesh",
-                              "nosuch", "-1", "0", "nan", "inf", "1e5", "2", "x", ""])
+cli_tokens = st.sampled_from(["run", "sweep", "report", "bench", "options", "--kpen", "--order", "--n",
+                              "--jobs", "--timeout", "--quick", "--all", "--spec", "--force",
+                              "--retry-failed", "kpen", "mesh", "nosuch", "-1", "0", "nan", "inf",
+                              "1e5", "2", "x", ""])
 
 
 @settings(max_examples=300, deadline=None)
@@ -101,18 +110,16 @@ cli_tokens = st.sampled_from(["run", "sweep", "report", "bench", "--kpen", "--or
 def test_random_command_lines_parse_or_exit_with_a_usage_error(tokens):
     import contextlib
     import io
-
-    from driver.cli import build_parser
     err = io.StringIO()
     try:
-        with contextlib.redirect_stderr(err):
+        with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
             args = build_parser().parse_args(tokens)
     except SystemExit as exc:
         assert exc.code in (0, 2)  # 0: --help; 2: usage error with a message
         if exc.code == 2:
             assert "error:" in err.getvalue()
         return
-    for name in ("jobs", "timeout"):
+    for name in ("jobs", "timeout", "repeat"):
         value = getattr(args, name, None)
         if value is not None:
             assert value > 0 and math.isfinite(value)

@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""A stand-in for FreeFem++ that misbehaves on purpose (FAKE_MODE), for the driver's fault tests.
+
+It answers -options and -columns, and runs the real solver where a fault needs
+real output, through the FreeFem++ named in REAL_FREEFEM.
+"""
+import os
+import signal
+import subprocess
+import sys
+import time
+
+args = sys.argv[1:]
+real = os.environ["REAL_FREEFEM"]
+mode = os.environ.get("FAKE_MODE", "")
+
+
+def run_real() -> int:
+    return subprocess.run([real, *args]).returncode
+
+
+if "-options" in args or "-columns" in args or not mode:
+    sys.exit(run_real())
+
+out = args[args.index("-out") + 1] if "-out" in args else "."
+summary = os.path.join(out, "summary.csv")
+columns = subprocess.run([real, "-nw", "-v", "0", args[args.index("-v") + 2], "-columns"],
+                         capture_output=True, text=True).stdout
+header = next(ln for ln in columns.splitlines() if ln.startswith("model,"))
+
+if mode == "crash_after_summary":
+    run_real()
+    os.kill(os.getpid(), signal.SIGSEGV)
+elif mode == "exit4_after_summary":
+    run_real()
+    sys.exit(4)
+elif mode == "holds_stdout":
+    code = run_real()
+    subprocess.Popen(["sleep", "30"])  # inherits stdout and stays
+    sys.exit(code)
+elif mode == "detached_child":
+    subprocess.Popen(["sleep", "30"], start_new_session=True, stdout=subprocess.DEVNULL,
+                     stderr=subprocess.DEVNULL)
+    sys.exit(run_real())
+elif mode == "hang":
+    time.sleep(600)
+elif mode == "unknown_columns":
+    run_real()
+    with open(summary) as f:
+        lines = f.read().splitlines()
+    with open(summary, "w") as f:
+        f.write(lines[0] + ",surprise\n" + lines[1] + ",1\n")
+elif mode == "empty_summary":
+    open(summary, "w").close()
+elif mode == "header_only":
+    with open(summary, "w") as f:
+        f.write(header + "\n")
+elif mode == "binary_summary":
+    with open(summary, "wb") as f:
+        f.write(b"\x00\xff\xfe garbage \x81\x82\n\x00")
+elif mode == "dir_summary":
+    os.mkdir(summary)
+elif mode == "non_numeric":
+    run_real()
+    with open(summary) as f:
+        head, row = f.read().splitlines()[:2]
+    fields = row.split(",")
+    fields[head.split(",").index("p0_fe")] = "abc"
+    with open(summary, "w") as f:
+        f.write(head + "\n" + ",".join(fields) + "\n")
+sys.exit(0)

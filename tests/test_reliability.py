@@ -1,0 +1,78 @@
+"""No false convergence, no silent write failure, limits with clear messages (hertz.edp)."""
+import subprocess
+import time
+
+import pytest
+
+from driver import freefem
+
+
+def run_limited(args: list[str], file_kb: int) -> subprocess.CompletedProcess:
+    """hertz.edp with files capped at file_kb: writes past it fail (EFBIG), as on a full disk."""
+    cmd = " ".join(f"'{a}'" for a in freefem.command(args))
+    return subprocess.run(["bash", "-c", f"ulimit -f {file_kb}; trap '' XFSZ; exec {cmd}"],
+                          capture_output=True, text=True, env=freefem.freefem_env(), timeout=300)
+
+
+def test_a_failed_write_exits_4_and_keeps_the_earlier_files(tmp_path):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "summary.csv").write_text("an earlier result\n")
+    proc = run_limited(["-n", "8", "-out", str(out)], file_kb=4)  # profile.csv needs more
+    assert proc.returncode == 4, proc.stdout
+    assert "cannot write the output files" in proc.stdout
+    assert (out / "summary.csv").read_text() == "an earlier result\n"  # not replaced by a short file
+    assert not list(out.glob("*.part"))
+
+
+def test_a_failed_vtk_write_exits_4(tmp_path):
+    proc = run_limited(["-n", "8", "-vtk", str(tmp_path / "f.vtu")], file_kb=64)
+    assert proc.returncode == 4 and "cannot write the VTK files" in proc.stdout
+
+
+def test_an_explicit_tolerance_below_the_rounding_floor_is_roundoff_not_converged(solve):
+    run = solve("-gamma", "1e6", "-tol", "1e-14")
+    assert run.exit_code == 3 and run.summary["status"] == "roundoff", run.output
+    assert "rounding floor" in run.output
+    # without -tol the same penalty converges at its floor (1e-7 here, below 1e-5)
+    default = solve("-gamma", "1e6").summary
+    assert default["status"] == "converged" and default["residual"] < 1e-5
+
+
+@pytest.mark.parametrize("args", [["-E", "1e-6", "-kpen", "1e10"], ["-E", "1e-6", "-kpen", "1e15"],
+                                  ["-R", "1e6", "-d", "1e4", "-kpen", "1e12"], ["-kpen", "4e-320"]])
+def test_penalties_rounding_would_fake_are_refused_up_front(solve, args):
+    run = solve(*args)
+    assert run.exit_code == 2 and "-kpen" in run.stderr and "E*/h" in run.stderr + run.stdout
+
+
+def test_uzawa_at_a_hopeless_penalty_stops_early(solve):
+    start = time.perf_counter()
+    run = solve("-method", "uzawa", "-gamma", "1e-6", "-maxit", "100000")
+    assert time.perf_counter() - start < 120
+    assert run.exit_code == 3 and run.summary["status"] == "stalled"
+
+
+def test_a_mesh_beyond_maxdof_is_refused_before_meshing(solve):
+    start = time.perf_counter()
+    run = solve("-n", "300", "-L", "1000")  # about 2 million dofs: minutes and gigabytes
+    assert run.exit_code == 2 and "-maxdof" in run.stderr and time.perf_counter() - start < 5
+    assert solve("-n", "32", "-maxdof", "1e4", "-check", "1").exit_code == 2
+
+
+def test_a_converged_run_far_from_its_estimate_is_inaccurate(solve):
+    run = solve("-n", "4", "-L", "20")  # the clamped boundary alone costs 5%
+    assert run.exit_code == 5
+    s = run.summary
+    assert s["status"] == "inaccurate" and "estimate" in s["warnings"]
+    assert s["est_err_F"] > 0.01
+
+
+def test_accuracy_reaches_its_target_or_says_why(solve):
+    ok = solve("-accuracy", "0.005")
+    s = ok.summary
+    assert ok.exit_code == 0 and s["accuracy_predicted"] <= 0.005
+    assert max(abs(s["err_p0"]), abs(s["err_F"]), abs(s["err_a"])) <= 0.005
+    short = solve("-accuracy", "0.001", "-nu", "0.45", "-maxdof", "2e4")  # needs n = 32: 37k dofs
+    assert short.exit_code == 5 and "mesh limit" in short.output
+    assert short.summary["status"] == "inaccurate" and "accuracy-missed" in short.summary["warnings"]
