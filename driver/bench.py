@@ -4,6 +4,10 @@ Times are wall-clock seconds of whole processes (what a user waits for); the
 solver's CPU breakdown comes from summary.csv. Configurations run in turn
 (A B C ... A B C ...), so a slow spell of the machine touches all of them.
 The table goes to an untracked file (results/local/bench.csv by default).
+The Dask path is measured against the local pool, both with 2 workers on this
+machine: one case at a time (what the scheduler adds to a case: submission,
+transfer of the row and files) and in batches that keep both workers busy
+(what a sweep pays, where the next case is already queued on its worker).
 """
 from __future__ import annotations
 
@@ -21,9 +25,11 @@ import pandas as pd
 from driver import ROOT, freefem
 from driver.cases import Case
 from driver.run import run_case
+from driver.schema import study_columns
+from driver.sweep import Executor, LocalPool, SweepError, make_executor
 
 CONFIGS = {
-    "default (newton P2, n=16, gamma=100)": Case(),
+    "default (newton P2, n=16)": Case(),
     "seed command (-kpen 1e5)": Case.of(kpen=1e5),
     "lagrange (P2, n=16)": Case.of(method="lagrange"),
     "uzawa (P2, n=16)": Case.of(method="uzawa"),
@@ -58,6 +64,45 @@ def fenics_run() -> tuple[float, dict] | None:
     return wall, json.loads(proc.stdout.strip().splitlines()[-1])
 
 
+DASK_TARGET = 0.05  # at most 5% of a default case's time per case
+
+
+def _through(executor: Executor, workdir: Path, count: int, summary: list[str], columns: list[str]) -> float:
+    """Seconds per case from submitting `count` default cases until their rows and files are on this side."""
+    start = time.perf_counter()
+    cases = {executor.submit(Case(), workdir / str(k), 600, "bench", summary, 1): workdir / str(k)
+             for k in range(count)}
+    for future in executor.as_completed(list(cases)):
+        executor.collect(future, Case(), cases[future], "bench", columns)
+    return (time.perf_counter() - start) / count
+
+
+def dask_overhead(root: Path, repeat: int = 5, workers: int = 2) -> dict[str, list[float]] | None:
+    """Seconds per default case through the local pool and through a LocalCluster of
+    the same size, interleaved: one case at a time (the latency of a case) and in
+    batches that keep every worker busy (a sweep). None without Dask."""
+    summary = freefem.summary_columns()
+    columns = study_columns(summary)
+    try:
+        dask = make_executor(workers, f"local:{workers}", say=lambda message: None)
+    except SweepError:
+        return None
+    local = LocalPool(workers)
+    times: dict[str, list[float]] = {f"{name}, {kind}": [] for kind in ("one case", "sweep")
+                                     for name in ("local pool", "dask")}
+    try:
+        _through(dask, root / "warm", workers, summary, columns)  # a worker's first task imports the driver
+        for k in range(repeat):
+            for name, executor in (("local pool", local), ("dask", dask)):
+                times[f"{name}, one case"].append(_through(executor, root / name / f"one{k}", 1, summary, columns))
+                times[f"{name}, sweep"].append(_through(executor, root / name / f"sweep{k}", 4 * workers,
+                                                        summary, columns))
+    finally:
+        dask.close()
+        local.close()
+    return times
+
+
 def bench(out: Path, repeat: int = 5) -> int:
     walls: dict[str, list[float]] = {name: [] for name in CONFIGS}
     summaries: dict[str, dict] = {}
@@ -79,6 +124,7 @@ def bench(out: Path, repeat: int = 5) -> int:
             start = time.perf_counter()
             run_case(Case(), root / "driver", timeout=600)
             through.append(time.perf_counter() - start)
+        dask_times = dask_overhead(root / "dask", repeat)
         # Newton from each start over the penalty (iterations, all levels)
         starts = []
         for gamma in [10.0**k for k in range(-2, 7)]:
@@ -107,6 +153,10 @@ def bench(out: Path, repeat: int = 5) -> int:
                      "status": "converged", "n": fenics_row["n"], "ndof": fenics_row["ndof"],
                      "iterations": fenics_row["newton_iterations"],
                      "max_abs_err": max(abs(fenics_row[k]) for k in ("err_p0", "err_F", "err_a"))})
+    if dask_times is not None:
+        for name, values in dask_times.items():
+            rows.append({"configuration": f"default per case, 2 workers, {name}",
+                         "wall_median_s": statistics.median(values), "wall_min_s": min(values)})
     table = pd.DataFrame(rows)
     out.parent.mkdir(parents=True, exist_ok=True)
     table.to_csv(out, index=False)
@@ -116,7 +166,7 @@ def bench(out: Path, repeat: int = 5) -> int:
     pd.set_option("display.width", 220)
     print(table.drop(columns=["wall_min_s"]).to_string(index=False, float_format=lambda v: f"{v:.4g}"))
     print()
-    ratio16 = by["lagrange (P2, n=16)"] / by["default (newton P2, n=16, gamma=100)"]
+    ratio16 = by["lagrange (P2, n=16)"] / by["default (newton P2, n=16)"]
     ratio32 = by["lagrange P2, n=32"] / by["newton P2, n=32"]
     print(f"lagrange / newton wall time: n=16 {ratio16:.2f}, n=32 {ratio32:.2f}")
     if fenics_row is not None:
@@ -125,6 +175,15 @@ def bench(out: Path, repeat: int = 5) -> int:
     overhead = (statistics.median(through) - statistics.median(direct)) / statistics.median(direct)
     print(f"driver overhead per case (default case, median of {repeat}): {overhead:+.1%} "
           f"(direct {statistics.median(direct):.3f} s, through the driver {statistics.median(through):.3f} s)")
+    if dask_times is None:
+        print("Dask overhead: not measured (pip install -e '.[dask]')")
+    else:
+        for kind in ("sweep", "one case"):
+            pool = statistics.median(dask_times[f"local pool, {kind}"])
+            dask = statistics.median(dask_times[f"dask, {kind}"])
+            print(f"Dask overhead per case ({kind}, default case, 2 workers, median of {repeat}): "
+                  f"{(dask - pool) / pool:+.1%} (local pool {pool:.3f} s, Dask {dask:.3f} s per case"
+                  + (f"; target at most {DASK_TARGET:.0%})" if kind == "sweep" else ")"))
     pivot = starts_table.pivot_table(index=["order", "start"], columns="gamma", values="all_levels", aggfunc="first")
     print("\nNewton iterations over all levels, by start and gamma = kpen h/E*:")
     print(pivot.to_string())

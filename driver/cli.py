@@ -4,6 +4,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import sys
 import time
 from pathlib import Path
@@ -25,6 +26,15 @@ def _positive(kind):
             raise argparse.ArgumentTypeError(f"must be a positive {kind.__name__}, got {text!r}")
         return value
     return parse
+
+
+def _scheduler(text: str) -> str:
+    from driver.dask_backend import parse_local
+    try:
+        parse_local(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+    return text
 
 
 def _results(p: argparse.ArgumentParser) -> None:
@@ -55,7 +65,12 @@ def build_parser(with_solver_options: bool = False) -> argparse.ArgumentParser:
     sw.add_argument("--quick", action="store_true", help="the small subsets used by the tests")
     sw.add_argument("--spec", type=Path, help="TOML or JSON grid: name, [base], [grid]")
     sw.add_argument("--jobs", type=_positive(int), default=None,
-                    help="parallel FreeFEM processes (default: the cores)")
+                    help="parallel FreeFEM processes (default: the cores; with --scheduler the workers decide)")
+    sw.add_argument("--scheduler", type=_scheduler, metavar="ADDRESS",
+                    default=os.environ.get("DASK_SCHEDULER_ADDRESS") or None,
+                    help="run the cases on a Dask cluster: a scheduler address (tcp://host:8786), or local:N "
+                         "for N single-threaded local workers (default: $DASK_SCHEDULER_ADDRESS, else this "
+                         "machine's cores)")
     sw.add_argument("--timeout", type=_positive(float), default=600.0,
                     help="seconds per case before it becomes a timeout row (default: %(default)s)")
     sw.add_argument("--force", action="store_true", help="rerun cases already in the table")
@@ -171,14 +186,17 @@ def _sweep(args) -> int:
         if count > 10_000 and not args.yes:
             raise SweepError(f"{count} cases: a grid above 10000 needs --yes")
         jobs = args.jobs or cores()
-        if jobs > cores():
+        if args.scheduler and args.jobs:
+            print(f"warning: --jobs is ignored with --scheduler {args.scheduler}: each worker thread runs "
+                  "one case at a time", file=sys.stderr)
+        elif jobs > cores():
             print(f"warning: --jobs {jobs} is more than the {cores()} cores: cases will share cores "
                   "and their wall_time (column jobs records it) will grow", file=sys.stderr)
         install_signal_handlers()
         start = time.perf_counter()
         outcomes = run_studies(jobs_list, args.results, jobs, args.timeout, args.force,
                                args.retry_failed, progress=not args.no_progress,
-                               say=lambda m: print(m, file=sys.stderr))
+                               say=lambda m: print(m, file=sys.stderr), scheduler=args.scheduler)
     except (SweepError, SpecError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # One-time setup on Debian: FreeFEM with its plugins and includes, the fix for
 # the Debian package's plugin/include paths, and this project as a Python
-# package (pip install -e ".[test,lint]": the `hertz` command and the test
-# tools). With --peers, also the peer codes the benchmark compares against.
+# package (pip install -e ".[test,lint]": the `hertz` command, the test
+# tools, and Dask, so that the same setup makes a machine a sweep worker).
+# With --peers, also the peer codes the benchmark compares against.
 # Idempotent; quick when everything is already there.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -36,7 +37,7 @@ if [ -w "$pref" ] || [ "$(id -u)" = 0 ]; then
 fi
 
 py="${PYTHON:-python3}"
-if ! "$py" -c "import driver, pytest, hypothesis, meshio, ruff, mypy" 2>/dev/null || ! command -v hertz >/dev/null; then
+if ! "$py" -c "import driver, pytest, hypothesis, meshio, distributed, ruff, mypy" 2>/dev/null || ! command -v hertz >/dev/null; then
   echo "setup: installing the Python package and its test tools"
   # Debian's own Python refuses pip installs into the system (PEP 668)
   "$py" -m pip install -q -e "$root[test,lint]" 2>/dev/null \

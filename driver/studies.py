@@ -178,6 +178,33 @@ def figures_study(quick: bool) -> list[Case]:
     return cases
 
 
+# Ellipsoids by their radii (Rx, Ry) on the seed scene's depth: the
+# long semi-axis lies along the larger radius.
+ELLIPSOIDS = {"Ry/Rx = 2": (0.5, 1.0), "Ry/Rx = 4": (0.5, 2.0), "Rx/Ry = 4": (2.0, 0.5)}
+
+
+def study_3d(quick: bool) -> list[Case]:
+    """The price of over-modelling (a sphere as axi and as 3d over meshes), and
+    ellipsoids against elliptical Hertz, with -model auto choosing the model."""
+    if quick:
+        return (labelled(grid(Case.of(model="3d"), n=[3]), lambda c: "sphere 3d newton P2")
+                + labelled(grid(Case.of(Rx=0.5, Ry=1.0), n=[3]), lambda c: "ellipsoid Ry/Rx = 2"))
+    cases = labelled(grid(Case(), n=[4, 8, 16, 32]), lambda c: "sphere axi newton P2")
+    cases += labelled(grid(Case.of(method="lagrange"), n=[4, 8, 16, 32]), lambda c: "sphere axi lagrange P2")
+    cases += labelled(grid(Case.of(model="3d"), n=[3, 4, 5, 6, 7]), lambda c: "sphere 3d newton P2")
+    cases += labelled(grid(Case.of(model="3d", method="lagrange"), n=[3, 4, 5, 6]),
+                      lambda c: "sphere 3d lagrange P2")
+    # P1 in 3D at an affordable n is several % off, and says so
+    cases += labelled(grid(Case.of(model="3d", order=1), n=[5, 10]), lambda c: "sphere 3d newton P1",
+                      lambda c: False)
+    for name, (rx, ry) in ELLIPSOIDS.items():
+        cases += labelled(grid(Case.of(Rx=rx, Ry=ry), n=[3, 4, 5]), lambda c, name=name: f"ellipsoid {name}",
+                          lambda c: c.get("n") >= 5)
+    cases += labelled(grid(Case.of(Rx=0.5, Ry=2.0, method="lagrange"), n=[5]),
+                      lambda c: "ellipsoid Ry/Rx = 4 lagrange")
+    return [c.labelled(c.variant, c.expect_converged and c.get("n") >= 5) for c in cases]
+
+
 @dataclass(frozen=True)
 class Study:
     name: str
@@ -195,6 +222,7 @@ STUDIES = {s.name: s for s in [
     Study("speed", speed_study, repeats=3),
     Study("units", units_study),
     Study("figures", figures_study, keep=("profile.csv", "axis.csv")),
+    Study("3d", study_3d, keep=("profile.csv", "profile_y.csv", "outline.csv")),
 ]}
 
 

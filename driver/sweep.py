@@ -5,7 +5,9 @@ cases are appended to results/<study>.csv as they arrive (table.py); running
 the same command again runs only the missing cases. A lock keeps two sweeps
 off one table. Costly cases start first and the progress bar counts predicted
 cost, not cases, so its ETA holds. Ctrl-C, SIGTERM and SIGHUP stop the running
-solvers and keep every finished row.
+solvers and keep every finished row. The cases run in a local thread pool
+(LocalPool), or as tasks on a Dask cluster (dask_backend.DaskExecutor, with
+--scheduler): the table, the locks and the bar stay here either way.
 """
 from __future__ import annotations
 
@@ -17,10 +19,12 @@ import subprocess
 import sys
 import tempfile
 import time
-from concurrent.futures import FIRST_COMPLETED, Future, ThreadPoolExecutor, wait
+from collections.abc import Iterable
+from concurrent.futures import Future, ThreadPoolExecutor, as_completed
 from contextlib import ExitStack
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any, Protocol
 
 import numpy as np
 import pandas as pd
@@ -117,10 +121,58 @@ class Job:
     repeats: int = 1
 
 
+class Executor(Protocol):
+    """Where the cases run: each submitted case comes back once, as a row."""
+
+    def submit(self, case: Case, workdir: Path, timeout: float, study: str, summary: list[str],
+               repeats: int) -> Any: ...
+
+    def as_completed(self, futures: list) -> Iterable: ...
+
+    def collect(self, future: Any, case: Case, workdir: Path, study: str, columns: list[str]) -> dict: ...
+
+    def cancel(self, futures: list) -> None: ...
+
+    def close(self) -> None: ...
+
+
+class LocalPool:
+    """Each case in a thread of this process, which starts and watches its solver."""
+
+    def __init__(self, jobs: int):
+        self.jobs = jobs
+        self.pool = ThreadPoolExecutor(max_workers=jobs)
+
+    def submit(self, case: Case, workdir: Path, timeout: float, study: str, summary: list[str],
+               repeats: int) -> Future:
+        return self.pool.submit(run_case, case, workdir, timeout, study, summary, self.jobs, repeats)
+
+    def as_completed(self, futures: list) -> Iterable:
+        return as_completed(futures)
+
+    def collect(self, future: Future, case: Case, workdir: Path, study: str, columns: list[str]) -> dict:
+        return future.result()  # run_case returns a row whatever happened
+
+    def cancel(self, futures: list) -> None:
+        for future in futures:
+            future.cancel()
+
+    def close(self) -> None:
+        self.pool.shutdown(wait=True, cancel_futures=True)
+
+
+def make_executor(jobs: int, scheduler: str | None = None, say=None) -> Executor:
+    if not scheduler:
+        return LocalPool(jobs)
+    from driver.dask_backend import DaskExecutor
+    return DaskExecutor(scheduler, say or print)
+
+
 def run_studies(jobs_list: list[Job], results_dir: Path, jobs: int, timeout: float,
                 force: bool = False, retry_failed: bool = False, progress: bool = False,
-                say=None) -> list[Outcome]:
-    """Sweep several studies under one progress bar, holding their locks throughout."""
+                say=None, scheduler: str | None = None) -> list[Outcome]:
+    """Sweep several studies under one progress bar, holding their locks throughout.
+    With a scheduler (a Dask address, or local:N) the cases run on its workers."""
     freefem.check_freefem()
     check_writable(results_dir)
     for job in jobs_list:
@@ -137,13 +189,17 @@ def run_studies(jobs_list: list[Job], results_dir: Path, jobs: int, timeout: flo
                 (say or print)(message)
             plans.append((job, todo, messages))
         total = sum(predicted_cost(c) * job.repeats for job, todo, _ in plans for c in todo)
+        # connect only when there is work: a finished sweep needs no cluster
+        executor = make_executor(jobs, scheduler, say) if total else None
+        if executor is not None:
+            locks.callback(executor.close)
         bar = tqdm(total=total, disable=not progress, unit="", dynamic_ncols=True,
                    bar_format="{l_bar}{bar}| {percentage:3.0f}% [{elapsed}<{remaining}]{postfix}")
         try:
             for job, todo, messages in plans:
                 path = study_csv(results_dir, job.study)
                 ran = _run_all(job.study, todo, path, columns, results_dir / "runs" / job.study,
-                               jobs, timeout, bar, job.repeats)
+                               executor, timeout, bar, job.repeats) if executor else 0
                 if ran:
                     record_environment(results_dir)
                 frame = table.read(path)
@@ -161,44 +217,39 @@ def run_studies(jobs_list: list[Job], results_dir: Path, jobs: int, timeout: flo
 
 
 def sweep(study: str, cases: list[Case], results_dir: Path, jobs: int, timeout: float,
-          force: bool = False, retry_failed: bool = False, keep: tuple[str, ...] = ()) -> Outcome:
+          force: bool = False, retry_failed: bool = False, keep: tuple[str, ...] = (),
+          scheduler: str | None = None) -> Outcome:
     """One study, no progress bar (tests, scripts)."""
-    return run_studies([Job(study, cases, keep)], results_dir, jobs, timeout, force, retry_failed)[0]
+    return run_studies([Job(study, cases, keep)], results_dir, jobs, timeout, force, retry_failed,
+                       scheduler=scheduler)[0]
 
 
 def _run_all(study: str, todo: list[Case], path: Path, columns: list[str], workroot: Path,
-             jobs: int, timeout: float, bar: tqdm | None, repeats: int = 1) -> int:
+             executor: Executor, timeout: float, bar: tqdm | None, repeats: int = 1) -> int:
     if not todo:
         return 0
     summary = freefem.summary_columns()
-    pool = ThreadPoolExecutor(max_workers=jobs)
-    pending: dict[Future, Case] = {}
+    pending: dict[Any, Case] = {}
     done = 0
     try:
         for case in todo:
-            pending[pool.submit(run_case, case, workroot / case.case_id, timeout, study,
-                                summary, jobs, repeats)] = case
-        while pending:
-            finished, _ = wait(pending, return_when=FIRST_COMPLETED)
-            for future in finished:
-                case = pending.pop(future)
-                row = future.result()  # run_case returns a row whatever happened
-                try:
-                    table.append_row(path, row, columns)
-                except table.TableError as exc:
-                    raise SweepError(f"{exc}; the rows written so far are kept") from None
-                done += 1
-                if bar is not None:
-                    bar.update(predicted_cost(case) * repeats)
-                    bar.set_postfix_str(f"{study}: {row['status']}", refresh=False)
+            pending[executor.submit(case, workroot / case.case_id, timeout, study, summary, repeats)] = case
+        for future in executor.as_completed(list(pending)):
+            case = pending.pop(future)
+            row = executor.collect(future, case, workroot / case.case_id, study, columns)
+            try:
+                table.append_row(path, row, columns)
+            except table.TableError as exc:
+                raise SweepError(f"{exc}; the rows written so far are kept") from None
+            done += 1
+            if bar is not None:
+                bar.update(predicted_cost(case) * repeats)
+                bar.set_postfix_str(f"{study}: {row['status']}", refresh=False)
     except BaseException:
         # Ctrl-C, a signal or a full disk: stop the running cases, record none of them
-        for future in pending:
-            future.cancel()
+        executor.cancel(list(pending))
         RUNNING.kill_all()
         raise
-    finally:
-        pool.shutdown(wait=True, cancel_futures=True)
     return done
 
 

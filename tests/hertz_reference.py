@@ -31,3 +31,50 @@ def cylinder_pressure(P: float, E: float, nu: float, R: float) -> float:
 
 
 SEED = dict(E=10.0, nu=0.3, R=0.5, d=0.02)
+
+
+def elliptic_ke(m: float) -> tuple[float, float]:
+    """Complete elliptic integrals K(m), E(m) of parameter m = e^2, by the
+    arithmetic-geometric mean."""
+    a, b, c = 1.0, math.sqrt(1 - m), math.sqrt(m)
+    total, weight = 0.5 * c * c, 0.5
+    for _ in range(40):
+        a, b, c = (a + b) / 2, math.sqrt(a * b), (a - b) / 2
+        weight *= 2
+        total += weight * c * c
+        if c < 1e-17:
+            break
+    K = math.pi / (2 * a)
+    return K, K * (1 - total)
+
+
+@dataclass(frozen=True)
+class Ellipse:
+    a_long: float
+    b_short: float
+    p0: float
+    d: float
+    P: float
+
+
+def ellipsoid_from_load(P: float, E: float, nu: float, R_small: float, R_large: float) -> Ellipse:
+    """Elliptical Hertz contact (Johnson ch. 4): the long semi-axis lies along the larger radius."""
+    A, B = 1 / (2 * R_large), 1 / (2 * R_small)
+    lo, hi = 0.0, 1.0
+    for _ in range(200):  # B/A = [(a/b)^2 E - K]/(K - E), increasing in m = e^2
+        m = 0.5 * (lo + hi)
+        K, Ee = elliptic_ke(m)
+        ratio = (Ee / (1 - m) - K) / (K - Ee)
+        lo, hi = (m, hi) if ratio < B / A else (lo, m)
+    m = 0.5 * (lo + hi)
+    K, Ee = elliptic_ke(m)
+    es = estar(E, nu)
+    a = (3 * P * (K - Ee) / (2 * math.pi * es * m * A)) ** (1 / 3)
+    b = a * math.sqrt(1 - m)
+    return Ellipse(a, b, 3 * P / (2 * math.pi * a * b), 3 * P * K / (2 * math.pi * a * es), P)
+
+
+def ellipsoid_from_depth(d: float, E: float, nu: float, R_small: float, R_large: float) -> Ellipse:
+    """The same at a given approach d: d grows as P^(2/3)."""
+    unit = ellipsoid_from_load(1.0, E, nu, R_small, R_large)
+    return ellipsoid_from_load((d / unit.d) ** 1.5, E, nu, R_small, R_large)

@@ -1,0 +1,113 @@
+"""3D: ellipsoids against elliptical Hertz (written again in hertz_reference.py),
+the sphere in 3D against its exact axisymmetric model, and -model auto.
+
+Each 3D run takes 3 to 20 s on 2 cores; the meshes are TetGen's, so 3D errors
+carry about 1% of mesh noise at the default n = 5 (README, 3D).
+"""
+import math
+
+import numpy as np
+import pytest
+from hertz_reference import SEED, ellipsoid_from_depth, ellipsoid_from_load, sphere
+
+# The worked check of the issue (SI): Rx = 10 mm, Ry = 40 mm, steel, P = 100 N.
+WORKED = dict(E=210e9, nu=0.3, Rx=0.010, Ry=0.040)
+
+
+def test_the_reference_meets_the_worked_elliptical_check():
+    e = ellipsoid_from_load(100.0, WORKED["E"], WORKED["nu"], WORKED["Rx"], WORKED["Ry"])
+    assert e.a_long == pytest.approx(0.28772e-3, rel=2e-5)
+    assert e.b_short == pytest.approx(0.11506e-3, rel=5e-5)
+    assert e.p0 == pytest.approx(1442.3e6, rel=5e-5)
+    assert e.d == pytest.approx(1.697e-6, rel=5e-4)
+
+
+def test_the_reference_reduces_to_the_sphere():
+    e = ellipsoid_from_depth(SEED["d"], SEED["E"], SEED["nu"], SEED["R"] * (1 - 1e-9), SEED["R"])
+    s = sphere(**SEED)
+    assert e.a_long == pytest.approx(s.a, rel=1e-4)
+    assert e.p0 == pytest.approx(s.p0, rel=1e-4)
+    assert e.P == pytest.approx(s.F, rel=1e-4)
+
+
+@pytest.fixture(scope="module")
+def worked(solve):
+    """The worked scene in SI at its Hertz approach, -model auto (an ellipsoid: 3d)."""
+    return solve("-E", "210e9", "-nu", "0.3", "-Rx", "0.01", "-Ry", "0.04", "-d", "1.697e-6")
+
+
+def test_an_ellipsoid_is_solved_in_3d_within_2_percent_of_elliptical_hertz(worked):
+    assert worked.exit_code == 0, worked.output
+    s = worked.summary
+    assert s["model"] == "3d" and s["status"] == "converged"
+    assert "model auto: an ellipsoid" in worked.stdout
+    ref = ellipsoid_from_depth(1.697e-6, WORKED["E"], WORKED["nu"], WORKED["Rx"], WORKED["Ry"])
+    # the solver's own references (hertz.idp) agree with the independent ones
+    assert s["a_hertz"] == pytest.approx(ref.b_short, rel=1e-6)  # x: the smaller radius, the short axis
+    assert s["b_hertz"] == pytest.approx(ref.a_long, rel=1e-6)
+    assert s["p0_hertz"] == pytest.approx(ref.p0, rel=1e-6)
+    assert s["F_hertz"] == pytest.approx(ref.P, rel=1e-6)
+    # measured 0.04% to 0.19% at n = 5; TetGen's mesh noise is about 1%
+    assert s["p0_fe"] == pytest.approx(ref.p0, rel=0.02)
+    assert s["F_fe"] == pytest.approx(ref.P, rel=0.02)
+    assert s["a_fe"] == pytest.approx(ref.b_short, rel=0.02)
+    assert s["b_fe"] == pytest.approx(ref.a_long, rel=0.02)
+    assert s["memory_mb"] > 50 and s["t_total"] > 0
+
+
+def test_the_outline_and_both_profiles_follow_the_hertz_ellipse(worked):
+    outline = worked.table("outline")
+    fe = np.hypot(outline["x"], outline["y"])
+    hz = np.hypot(outline["x_hertz"], outline["y_hertz"])
+    assert len(outline) >= 10 and outline["theta_deg"].iloc[-1] == pytest.approx(90)
+    assert np.all(np.abs(fe / hz - 1) < 0.03), (fe / hz - 1).tolist()
+    s = worked.summary
+    for name, edge in (("profile", s["a_hertz"]), ("profile_y", s["b_hertz"])):
+        p = worked.table(name)
+        inside = p[p["r"] < 0.8 * edge]
+        # the pressure along each axis against p0 sqrt(1 - (r/edge)^2)
+        assert np.max(np.abs(inside["p_fe"] - inside["p_hertz"])) < 0.03 * s["p0_hertz"], name
+        assert abs(p["p_fe"].iloc[-1]) < 1e-9 * s["p0_hertz"], name  # open beyond the edge
+
+
+def test_a_sphere_in_3d_agrees_with_its_axisymmetric_model(solve):
+    axi, full = solve().summary, solve("-model", "3d").summary
+    assert full["model"] == "3d" and full["status"] == "converged" and full["n"] == 5
+    # the same scene: 3D at n = 5 against axi at n = 16 (0.02%); measured within 0.5%
+    for column in ("p0_fe", "F_fe", "a_fe"):
+        assert full[column] == pytest.approx(axi[column], rel=0.015), column
+    assert full["b_fe"] == pytest.approx(full["a_fe"], rel=0.015)  # round in 3D too
+    # over-modelling costs: more dofs and memory for the same answer
+    assert full["ndof"] > 3 * axi["ndof"] and full["memory_mb"] > axi["memory_mb"]
+
+
+def test_lagrange_in_3d_is_nodally_exact(solve):
+    run = solve("-model", "3d", "-method", "lagrange")
+    s = run.summary
+    assert run.exit_code == 0 and s["status"] == "converged", run.output
+    assert abs(s["nodal_penetration_over_d"]) <= 1e-10
+    ref = sphere(**SEED)
+    assert s["F_fe"] == pytest.approx(ref.F, rel=0.02) and s["p0_fe"] == pytest.approx(ref.p0, rel=0.02)
+
+
+@pytest.mark.parametrize("args, model, why", [
+    ((), "axi", "a sphere"),
+    (("-Ry", "inf"), "plane", "a cylinder"),
+])
+def test_model_auto_never_models_more_than_the_scene_needs(solve, args, model, why):
+    run = solve(*args)
+    assert run.summary["model"] == model
+    assert f"model auto: {why}" in run.stdout
+
+
+def test_the_3d_vtk_file_holds_the_fields(solve, tmp_path_factory):
+    path = tmp_path_factory.mktemp("vtk") / "sphere3d.vtu"
+    run = solve("-model", "3d", "-n", "3", "-vtk", str(path))
+    assert run.exit_code in (0, 5), run.output
+    volume = path.read_text(errors="replace")
+    surface = path.with_name("sphere3d_surface.vtu").read_text(errors="replace")
+    assert '<VTKFile type="UnstructuredGrid"' in volume and volume.rstrip().endswith("</VTKFile>")
+    for field in ("displacement", "sigma_zz", "von_mises"):
+        assert f'Name="{field}"' in volume, field
+    assert 'Name="pressure"' in surface and path.with_name("sphere3d_near.vtu").exists()
+    assert math.isfinite(run.summary["p0_fe"])

@@ -1,0 +1,243 @@
+"""Sweeps on a Dask cluster: the same rows as the local pool, no case lost with a worker, Ctrl-C stops the solvers.
+
+A real `dask scheduler` and two `dask worker --nthreads 1` processes on
+127.0.0.1 (ports chosen by the system, files under pytest's temporary
+directories), torn down after the module.
+"""
+from __future__ import annotations
+
+import csv
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from driver import ROOT, table
+from driver.cases import Case
+from driver.run import MARKER
+from driver.studies import STUDIES
+from driver.sweep import Job, run_studies
+
+distributed = pytest.importorskip("distributed")
+
+# not compared: what the clock and the machine say rather than the solver
+# (also every t_* time and *_mb memory column of summary.csv)
+MACHINE_COLUMNS = {"wall_time", "timings", "max_rss_mb", "jobs"}
+
+
+def _machine(column: str) -> bool:
+    return column in MACHINE_COLUMNS or column.startswith("t_") or column.endswith("_mb")
+
+
+def _env(tmp: Path) -> dict[str, str]:
+    env = {k: v for k, v in os.environ.items() if k != "DASK_SCHEDULER_ADDRESS"}
+    # the workers import this checkout's driver, whatever else is installed
+    env["PYTHONPATH"] = os.pathsep.join([str(ROOT), *filter(None, [env.get("PYTHONPATH")])])
+    env["DASK_TEMPORARY_DIRECTORY"] = str(tmp)
+    return env
+
+
+def _stop(proc: subprocess.Popen) -> None:
+    for sig in (signal.SIGTERM, signal.SIGKILL):
+        if proc.poll() is not None:
+            return
+        try:
+            os.killpg(proc.pid, sig)
+        except ProcessLookupError:
+            return
+        try:
+            proc.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            continue
+
+
+class Cluster:
+    def __init__(self, tmp: Path):
+        self.tmp = tmp
+        self.env = _env(tmp)
+        self.procs: list[subprocess.Popen] = []
+        self.address = ""
+
+    def up(self, workers: int) -> None:
+        file = self.tmp / "scheduler.json"
+        self.start(["scheduler", "--host", "127.0.0.1", "--port", "0", "--no-dashboard",
+                    "--scheduler-file", str(file)], "scheduler")
+        deadline = time.time() + 30
+        while not file.exists() and time.time() < deadline:
+            time.sleep(0.1)
+        self.address = json.loads(file.read_text())["address"]
+        for k in range(workers):
+            self.worker(f"w{k}")
+        self.wait_for(workers)
+
+    def start(self, args: list[str], name: str) -> subprocess.Popen:
+        log = open(self.tmp / f"{name}.log", "w")
+        # its own session: a kill of the group takes the nanny and its worker process
+        proc = subprocess.Popen([sys.executable, "-m", "dask", *args], env=self.env, stdout=log,
+                                stderr=subprocess.STDOUT, start_new_session=True)
+        log.close()
+        self.procs.append(proc)
+        return proc
+
+    def worker(self, name: str) -> subprocess.Popen:
+        directory = self.tmp / name
+        directory.mkdir(exist_ok=True)
+        return self.start(["worker", self.address, "--nthreads", "1", "--host", "127.0.0.1", "--no-dashboard",
+                           "--name", name, "--local-directory", str(directory)], name)
+
+    def wait_for(self, count: int) -> None:
+        with distributed.Client(self.address, timeout=30) as client:
+            client.wait_for_workers(count, timeout=60)
+
+    def close(self) -> None:
+        for proc in reversed(self.procs):
+            _stop(proc)
+
+
+@pytest.fixture(scope="module")
+def cluster(tmp_path_factory):
+    running = Cluster(tmp_path_factory.mktemp("dask"))
+    try:
+        running.up(workers=2)
+        yield running
+    finally:
+        running.close()
+
+
+def _raw(path: Path) -> dict[str, dict[str, str]]:
+    """A table's rows as the text in the file, by case id (digits as written)."""
+    with open(path, newline="") as f:
+        return {row["case_id"]: row for row in csv.DictReader(f)}
+
+
+def test_a_study_through_the_scheduler_gives_the_local_pools_rows(cluster, tmp_path):
+    study = STUDIES["figures"]  # its per-case profile.csv and axis.csv come back from the workers too
+    jobs = [Job(study.name, study.make(True), study.keep, study.repeats)]
+    run_studies(jobs, tmp_path / "local", jobs=2, timeout=120)
+    run_studies(jobs, tmp_path / "dask", jobs=2, timeout=120, scheduler=cluster.address)
+    local, remote = _raw(tmp_path / "local" / "figures.csv"), _raw(tmp_path / "dask" / "figures.csv")
+    assert sorted(remote) == sorted(local) == sorted(c.case_id for c in study.make(True))
+    for case_id, row in local.items():
+        for column in ("p0_fe", "F_fe", "a_fe"):
+            assert remote[case_id][column] == row[column], (case_id, column)
+        same = {c for c in row if not _machine(c)}
+        assert {c: remote[case_id][c] for c in same} == {c: row[c] for c in same}, case_id
+    for name in study.keep:  # the same lines, in the order of each table's cases
+        lines = [(tmp_path / side / "figures" / name).read_text().splitlines() for side in ("dask", "local")]
+        assert lines[0][0] == lines[1][0] and sorted(lines[0]) == sorted(lines[1])
+    for case_id in local:
+        files = sorted(p.name for p in (tmp_path / "dask" / "runs" / "figures" / case_id).iterdir())
+        assert files == sorted(p.name for p in (tmp_path / "local" / "runs" / "figures" / case_id).iterdir())
+
+
+def cli(*args: str, env: dict[str, str], **kw):
+    return subprocess.run([sys.executable, "-m", "driver", *args], cwd=ROOT, capture_output=True, text=True,
+                          env=env, **kw)
+
+
+def _solvers(under: Path) -> list[str]:
+    """Command lines of the running solvers whose case directory is under this one
+    (other sweeps on the machine are not this test's)."""
+    found = []
+    for proc in Path("/proc").iterdir():
+        if not proc.name.isdigit():
+            continue
+        try:
+            if not any(e.startswith(MARKER.encode()) for e in (proc / "environ").read_bytes().split(b"\0")):
+                continue
+            command = (proc / "cmdline").read_bytes().replace(b"\0", b" ").decode()
+        except OSError:
+            continue
+        if f" {under}/" in command:
+            found.append(command)
+    return found
+
+
+SLOW = 'name = "slow"\n[base]\nmethod = "lagrange"\n[grid]\nn = [32]\nkpen = [1e4, 1e5, 1e6, 1e7, 1e8]\n'
+
+
+def test_a_lost_worker_loses_no_case_and_duplicates_none(cluster, tmp_path):
+    spec = tmp_path / "s.toml"
+    spec.write_text(SLOW)
+    doomed = cluster.worker("doomed")
+    cluster.wait_for(3)
+    args = ["sweep", "--spec", str(spec), "--results", str(tmp_path), "--scheduler", cluster.address,
+            "--no-progress"]
+    sweep = subprocess.Popen([sys.executable, "-m", "driver", *args], cwd=ROOT, env=cluster.env,
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.time() + 60
+    lost: list[str] = []
+    while not lost and time.time() < deadline and sweep.poll() is None:
+        lost = _solvers(cluster.tmp / "doomed")
+        time.sleep(0.05)
+    assert lost, "no case ran on the worker to be killed"
+    os.killpg(doomed.pid, signal.SIGKILL)  # the worker and its nanny, as a machine that goes away
+    out, err = sweep.communicate(timeout=120)
+    assert sweep.returncode == 0, err
+    rows = table.read(tmp_path / "slow.csv")
+    assert rows["case_id"].is_unique and len(rows) == 5 and (rows["status"] == "converged").all(), rows
+    case_id = lost[0].split("/slow/")[1].split()[0]
+    log = (tmp_path / "runs" / "slow" / case_id / "freefem.log").read_text()
+    assert case_id in set(rows["case_id"]) and "/doomed/" not in log  # run again on another worker
+    again = cli(*args, env=cluster.env)
+    assert again.returncode == 0 and "(0 run now)" in again.stdout, again.stdout + again.stderr
+    assert table.read(tmp_path / "slow.csv").equals(rows)
+    assert not _solvers(cluster.tmp)
+
+
+def test_ctrl_c_cancels_the_tasks_and_kills_their_solvers(cluster, tmp_path):
+    spec = tmp_path / "s.toml"
+    spec.write_text('name = "long"\n[base]\nn = 64\n[grid]\nkpen = [1e4, 1e5, 1e6, 1e7]\n')
+    sweep = subprocess.Popen([sys.executable, "-m", "driver", "sweep", "--spec", str(spec), "--results",
+                              str(tmp_path), "--scheduler", cluster.address, "--no-progress"],
+                             cwd=ROOT, env=cluster.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.time() + 60
+    while len(_solvers(cluster.tmp)) < 2 and time.time() < deadline:
+        time.sleep(0.05)
+    assert len(_solvers(cluster.tmp)) == 2  # one on each worker
+    sweep.send_signal(signal.SIGINT)
+    _, err = sweep.communicate(timeout=30)
+    assert sweep.returncode == 130 and "interrupted" in err, err
+    deadline = time.time() + 5
+    while _solvers(cluster.tmp) and time.time() < deadline:
+        time.sleep(0.05)
+    assert not _solvers(cluster.tmp)  # each cancelled task killed its solver
+    time.sleep(1.0)
+    assert not _solvers(cluster.tmp)  # and the queued ones never started
+    assert not (tmp_path / "long.csv").exists() or len(table.read(tmp_path / "long.csv")) == 0
+
+
+def test_a_task_that_fails_is_a_failure_row(cluster, tmp_path):
+    from driver import freefem
+    from driver.dask_backend import DaskExecutor
+    from driver.schema import study_columns
+    columns = study_columns(freefem.summary_columns())
+    case = Case.of(n=8)
+    with DaskExecutor(cluster.address) as executor:
+        future = executor.client.submit(int, "not a number", pure=False)
+        row = executor.collect(future, case, tmp_path / "c", "t", columns)
+    assert row["status"] == "failed" and "not a number" in row["error"] and row["case_id"] == case.case_id
+    table.append_row(tmp_path / "t.csv", row, columns)
+    assert table.check(tmp_path / "t.csv", columns).bad == []
+
+
+def test_local_n_from_the_environment_starts_its_own_workers(tmp_path):
+    spec = tmp_path / "s.toml"
+    spec.write_text('name = "tiny"\n[base]\nn = 8\n[grid]\nkpen = [1e5, 1e7]\n')
+    proc = cli("sweep", "--spec", str(spec), "--results", str(tmp_path), "--no-progress",
+               env=_env(tmp_path) | {"DASK_SCHEDULER_ADDRESS": "local:2"})
+    assert proc.returncode == 0, proc.stderr
+    rows = table.read(tmp_path / "tiny.csv")
+    assert len(rows) == 2 and (rows["status"] == "converged").all() and (rows["jobs"] == 2).all()
+    assert (tmp_path / "runs" / "tiny" / rows["case_id"].iloc[0] / "summary.csv").exists()
+
+
+@pytest.mark.parametrize("address", ["local:0", "local:x"])
+def test_a_bad_local_cluster_size_is_refused(address):
+    proc = cli("sweep", "kpen", "--scheduler", address, env=_env(Path("/nonexistent")))
+    assert proc.returncode == 2 and "local:N" in proc.stderr
