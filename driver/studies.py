@@ -187,8 +187,9 @@ def study_3d(quick: bool) -> list[Case]:
     """The price of over-modelling (a sphere as axi and as 3d over meshes), and
     ellipsoids against elliptical Hertz, with -model auto choosing the model."""
     if quick:
-        return (labelled(grid(Case.of(model="3d"), n=[3]), lambda c: "sphere 3d newton P2")
-                + labelled(grid(Case.of(Rx=0.5, Ry=1.0), n=[3]), lambda c: "ellipsoid Ry/Rx = 2"))
+        # n = 3 is below the default: the estimate may pass 1% (inaccurate)
+        return (labelled(grid(Case.of(model="3d"), n=[3]), lambda c: "sphere 3d newton P2", lambda c: False)
+                + labelled(grid(Case.of(Rx=0.5, Ry=1.0), n=[3]), lambda c: "ellipsoid Ry/Rx = 2", lambda c: False))
     cases = labelled(grid(Case(), n=[4, 8, 16, 32]), lambda c: "sphere axi newton P2")
     cases += labelled(grid(Case.of(method="lagrange"), n=[4, 8, 16, 32]), lambda c: "sphere axi lagrange P2")
     cases += labelled(grid(Case.of(model="3d"), n=[3, 4, 5, 6, 7]), lambda c: "sphere 3d newton P2")
@@ -198,8 +199,7 @@ def study_3d(quick: bool) -> list[Case]:
     cases += labelled(grid(Case.of(model="3d", order=1), n=[5, 10]), lambda c: "sphere 3d newton P1",
                       lambda c: False)
     for name, (rx, ry) in ELLIPSOIDS.items():
-        cases += labelled(grid(Case.of(Rx=rx, Ry=ry), n=[3, 4, 5]), lambda c, name=name: f"ellipsoid {name}",
-                          lambda c: c.get("n") >= 5)
+        cases += [c.labelled(f"ellipsoid {name}") for c in grid(Case.of(Rx=rx, Ry=ry), n=[3, 4, 5])]
     cases += labelled(grid(Case.of(Rx=0.5, Ry=2.0, method="lagrange"), n=[5]),
                       lambda c: "ellipsoid Ry/Rx = 4 lagrange")
     return [c.labelled(c.variant, c.expect_converged and c.get("n") >= 5) for c in cases]
