@@ -39,6 +39,8 @@ CONFIGS = {
     "-accuracy 0.01": Case.of(accuracy=0.01),
     "SI steel ball": Case.of(E=210e9, R=0.01, d=1e-5),
     "plane (cylinder)": Case.of(model="plane"),
+    "3d sphere (P2, n=5)": Case.of(model="3d"),
+    "3d ellipsoid Ry/Rx=4 (P2, n=5)": Case.of(Rx=0.5, Ry=2.0),
 }
 FENICS = ROOT / "bench" / "fenics_peer.py"
 DEBIAN_PYTHON = "/usr/bin/python3"  # python3-dolfin is a Debian package
@@ -136,6 +138,17 @@ def bench(out: Path, repeat: int = 5) -> int:
                                    "all_levels": s["iterations"] + s["coarse_iterations"],
                                    "factorizations": s["factorizations"], "p0_fe": s["p0_fe"]})
 
+        # lagrange over its augmentation, in SI units (a steel ball), P1 and P2
+        augmentation = []
+        for gamma in [10.0**k for k in range(-3, 4)]:
+            for order in (1, 2):
+                _, s = direct_run(Case.of(method="lagrange", E=210e9, R=0.01, d=1e-5, gamma=gamma, order=order),
+                                  root)
+                augmentation.append({"gamma": gamma, "order": order, "status": s["status"],
+                                     "iterations": s["iterations"], "nodal_penetration_over_d":
+                                     s["nodal_penetration_over_d"],
+                                     "max_abs_err": max(abs(s[k]) for k in ("err_p0", "err_F", "err_a"))})
+
     rows = []
     for name, s in summaries.items():
         rows.append({"configuration": name, "wall_median_s": statistics.median(walls[name]),
@@ -145,7 +158,7 @@ def bench(out: Path, repeat: int = 5) -> int:
                      "solve_over_one_linear_solve": s["t_solve"] / s["t_linear_one"] if s["t_linear_one"] else None,
                      "max_abs_err": max(abs(s[k]) for k in ("err_p0", "err_F", "err_a") if s[k] == s[k]),
                      "est_max_err": s["accuracy_predicted"],
-                     "nodal_penetration_over_d": s["nodal_penetration_over_d"]})
+                     "nodal_penetration_over_d": s["nodal_penetration_over_d"], "memory_mb": s["memory_mb"]})
     if fenics_row is not None:
         rows.append({"configuration": f"FEniCS peer (P2, n={fenics_row['n']}, L={fenics_row['L']}, "
                                       f"kpen={fenics_row['kpen']:g})",
@@ -192,7 +205,11 @@ def bench(out: Path, repeat: int = 5) -> int:
     worst = max(abs(r.p0_fe / hertz.loc[(r.gamma, r.order), "p0_fe"] - 1) for r in coarse.itertuples())
     print(f"coarse start against the Hertz start: p0 differs by at most {worst:.1e}; "
           f"fine-level factorizations at most {coarse['factorizations'].max():.0f}")
-    print(f"written: {out} and {out.with_name('bench_starts.csv')}")
+    aug = pd.DataFrame(augmentation)
+    aug.to_csv(out.with_name("bench_lagrange.csv"), index=False)
+    print("\nlagrange over its augmentation c = gamma E*/h, SI steel ball:")
+    print(aug.to_string(index=False, float_format=lambda v: f"{v:.3g}"))
+    print(f"written: {out}, {out.with_name('bench_starts.csv')} and {out.with_name('bench_lagrange.csv')}")
     return 0
 
 

@@ -12,6 +12,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
@@ -27,15 +28,17 @@ METHOD_STYLE = {("newton", 2): ("#1565c0", "o"), ("newton", 1): ("#64b5f6", "s")
 
 
 def max_error(frame: pd.DataFrame) -> pd.Series:
-    return frame[list(ERRORS)].abs().max(axis=1, skipna=True)
+    """Largest |error| of p0, F, a, and in 3D of b (NaN in 2D, skipped)."""
+    return frame[list(ERRORS) + ["err_b"]].abs().max(axis=1, skipna=True)
 
 
 def sphere_cases(tables: dict[str, pd.DataFrame]) -> pd.DataFrame:
-    """Converged sphere cases of every study, once each (the same case in two
-    studies is one point), with their max |error|."""
+    """Converged sphere cases of every study (axisymmetric, and in 3D), once each
+    (the same case in two studies is one point), with their max |error|."""
     frames = [t for name, t in tables.items() if len(t) and name != "figures"]
     rows = pd.concat(frames, ignore_index=True)
-    rows = rows[(rows["status"] == "converged") & (rows["model"] == "axi")].drop_duplicates("case_id")
+    sphere = (rows["model"] == "axi") | ((rows["model"] == "3d") & (rows["Rx"] == rows["Ry"]))
+    rows = rows[(rows["status"] == "converged") & sphere].drop_duplicates("case_id")
     return rows.assign(max_err=max_error(rows))
 
 
@@ -68,12 +71,26 @@ def pareto(frame: pd.DataFrame, x: str, y: str) -> pd.DataFrame:
 
 
 def accuracy_vs_speed(tables: dict, path: Path) -> Path:
+    """Left: the error against Hertz; right: the same cases by their own estimate."""
     rows = sphere_cases(tables)
-    fig, ax = plt.subplots(figsize=(8.5, 5.8))
-    for (method, order), group in rows.groupby(["method", "order"]):
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(16, 5.8), sharey=True)
+    _accuracy_panel(ax, rows, "max_err", "max |relative error| of p0, F, a against Hertz [%]",
+                    f"Accuracy against speed: {len(rows)} converged sphere cases (open: solved in 3D)")
+    estimated = rows.assign(max_est=rows["accuracy_predicted"])
+    _accuracy_panel(ax2, estimated[estimated["max_est"] > 0], "max_est",
+                    "estimated max relative error (no Hertz) [%]", "The same cases by their own error estimate")
+    ax2.yaxis.set_tick_params(labelleft=True)
+    return _save(fig, path)
+
+
+def _accuracy_panel(ax, rows: pd.DataFrame, column: str, ylabel: str, title: str) -> None:
+    rows = rows.assign(max_err=rows[column])
+    for (model, method, order), group in rows.groupby(["model", "method", "order"]):
         color, marker = METHOD_STYLE.get((method, int(order)), ("k", "x"))
-        ax.scatter(group["wall_time"], group["max_err"] * 100, marker=marker, s=26, alpha=0.75,
-                   color=color, label=f"{method} P{int(order)} ({len(group)})")
+        solid = model == "axi"  # 3D spheres: open markers
+        ax.scatter(group["wall_time"], group["max_err"] * 100, marker=marker, s=26 if solid else 44,
+                   alpha=0.75, color=color if solid else "none", edgecolors=color,
+                   label=f"{method} P{int(order)}{'' if solid else ', 3d'} ({len(group)})")
     front = pareto(rows, "wall_time", "max_err")
     ax.plot(front["wall_time"], front["max_err"] * 100, "k-", lw=1, label="Pareto front")
     last = None
@@ -83,17 +100,16 @@ def accuracy_vs_speed(tables: dict, path: Path) -> Path:
         if last is not None and abs(math.log(point[0] / last[0])) < 0.9 \
                 and abs(math.log(point[1] / last[1])) < 0.6:
             continue
-        ax.annotate(f"{row['method']} P{int(row['order'])} n={int(row['n'])}", point,
+        ax.annotate(f"{row['method']} P{int(row['order'])} n={int(row['n'])}"
+                    + ("" if row["model"] == "axi" else " 3d"), point,
                     fontsize=7, xytext=(5, 2), textcoords="offset points")
         last = point
     ax.set(xscale="log", yscale="log", xlabel="wall time per case [s] (whole FreeFEM process)",
-           ylabel="max |relative error| of p0, F, a against Hertz [%]",
-           title=f"Accuracy against speed: {len(rows)} converged sphere cases")
+           ylabel=ylabel, title=title)
     for level in (1, 0.1):
         ax.axhline(level, color="grey", ls=":", lw=0.8)
     ax.grid(True, which="major", alpha=0.3)
     ax.legend(fontsize=7, loc="upper right")
-    return _save(fig, path)
 
 
 def penalty_study(frame: pd.DataFrame, path: Path) -> Path:
@@ -344,4 +360,133 @@ def units_check(frame: pd.DataFrame, path: Path) -> Path:
            title="One dimensionless scene in three unit systems (spread: largest difference of any error)")
     ax.grid(True, axis="y", alpha=0.3)
     ax.legend(fontsize=7)
+    return _save(fig, path)
+
+
+def matched_accuracy(frame: pd.DataFrame) -> pd.DataFrame:
+    """For each converged 3D sphere case, the cheapest converged axisymmetric case
+    of the same method at least as accurate (against Hertz): the price of
+    over-modelling as ratios of wall time, memory and dofs."""
+    rows = frame[frame["status"] == "converged"].assign(max_err=max_error(frame))
+    axi = rows[rows["model"] == "axi"]
+    full = rows[(rows["model"] == "3d") & (rows["Rx"] == rows["Ry"])]
+    pairs = []
+    for _, row in full.iterrows():
+        match = axi[(axi["method"] == row["method"]) & (axi["max_err"] <= row["max_err"])]
+        if len(match):
+            best = match.loc[match["wall_time"].idxmin()]
+            pairs.append({"method": row["method"], "n_3d": row["n"], "n_axi": best["n"],
+                          "err_3d": row["max_err"], "err_axi": best["max_err"],
+                          "time_3d": row["wall_time"], "time_axi": best["wall_time"],
+                          "memory_3d": row["memory_mb"], "memory_axi": best["memory_mb"],
+                          "ndof_3d": row["ndof"], "ndof_axi": best["ndof"]})
+    return pd.DataFrame(pairs)
+
+
+def over_modelling(frame: pd.DataFrame, path: Path) -> Path:
+    rows = frame[frame["status"].isin(["converged", "inaccurate"])].assign(max_err=max_error(frame))
+    spheres = rows[rows["Rx"] == rows["Ry"]]
+    fig, axes = plt.subplots(1, 3, figsize=(16, 5))
+    columns = (("wall_time", "wall time per case [s]"), ("memory_mb", "peak memory [MB]"),
+               ("ndof", "degrees of freedom"))
+    for ax, (col, label) in zip(axes, columns):
+        for (model, method, order), g in spheres.groupby(["model", "method", "order"]):
+            g = g.sort_values("n")
+            color, marker = METHOD_STYLE.get((method, int(order)), ("k", "x"))
+            ax.plot(g[col], g["max_err"] * 100, "-" if model == "axi" else "--", color=color, marker=marker,
+                    mfc=color if model == "axi" else "none", label=f"{model} {method} P{int(order)}")
+            for _, r in g.iterrows():
+                ax.annotate(f"n={r['n']:.0f}", (r[col], r["max_err"] * 100), fontsize=6,
+                            xytext=(3, 3), textcoords="offset points")
+        ax.axhline(1, color="grey", ls=":", lw=0.8)
+        ax.set(xscale="log", yscale="log", xlabel=label)
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())  # decades only: no crowding
+        ax.grid(True, alpha=0.3)
+    axes[0].set_ylabel("max |relative error| of p0, F, a (and b in 3D) against Hertz [%]")
+    axes[0].legend(fontsize=7)
+    pairs = matched_accuracy(frame)
+    if len(pairs):
+        p = pairs.sort_values("err_3d").iloc[0]
+        fig.suptitle(f"The price of over-modelling a sphere: at {p['err_3d']:.2%} ({p['method']}), 3D n = "
+                     f"{p['n_3d']:.0f} costs {p['time_3d'] / p['time_axi']:.0f}x the time, "
+                     f"{p['memory_3d'] / p['memory_axi']:.0f}x the memory and "
+                     f"{p['ndof_3d'] / p['ndof_axi']:.0f}x the dofs of axi n = {p['n_axi']:.0f}")
+    else:
+        fig.suptitle("The price of over-modelling a sphere: axi (solid) against 3d (dashed)")
+    return _save(fig, path)
+
+
+def ellipses(frame: pd.DataFrame, outline: pd.DataFrame, profile: pd.DataFrame, profile_y: pd.DataFrame,
+             path: Path) -> Path:
+    """Contact outlines against Hertz's ellipses, and the pressure along both axes."""
+    rows = frame[(frame["model"] == "3d") & (frame["method"] == "newton") & (frame["order"] == 2)
+                 & frame["status"].isin(["converged", "inaccurate"])]
+    finest = rows.loc[rows.groupby(["Rx", "Ry"])["n"].idxmax()].sort_values(["Ry", "Rx"])
+    fig, (ax, ax2) = plt.subplots(1, 2, figsize=(13.5, 5.6))
+    colors = ("#1565c0", "#c62828", "#2e7d32", "#6a1b9a", "#ef6c00")
+    for (_, case), color in zip(finest.iterrows(), colors):
+        line = outline[outline["case_id"] == case["case_id"]]
+        name = f"Rx = {case['Rx']:g}, Ry = {case['Ry']:g}, n = {case['n']:.0f}"
+        ax.plot(line["x"], line["y"], "o", color=color, ms=3.5, label=f"FE edge, {name}")
+        ax.plot(line["x_hertz"], line["y_hertz"], "-", color=color, lw=1)
+    ax.plot([], [], "k-", lw=1, label="Hertz ellipse")
+    ax.set(xlabel="x [length]", ylabel="y [length]", aspect="equal",
+           title="Contact outline (a quarter; d = {:g})".format(finest["d"].iloc[0]) if len(finest) else "")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    longest = finest.loc[(finest["Ry"] / finest["Rx"]).idxmax()] if len(finest) else None
+    if longest is not None:
+        for data, edge, label, ls in ((profile, longest["a_hertz"], "x", "-"),
+                                      (profile_y, longest["b_hertz"], "y", "--")):
+            prof = data[data["case_id"] == longest["case_id"]]
+            ax2.plot(prof["r"] / edge, prof["p_fe"] / longest["p0_hertz"], ls, color="#1565c0",
+                     label=f"FE along {label} (semi-axis {edge:.4g})")
+            ax2.plot(prof["r"] / edge, prof["p_hertz"] / longest["p0_hertz"], ls, color="k", lw=0.9,
+                     label=f"Hertz along {label}")
+        ax2.set(xlabel="distance / Hertz semi-axis of that direction", ylabel="p / p0 (Hertz)", xlim=(0, 1.6),
+                title=f"Pressure along both axes: Rx = {longest['Rx']:g}, Ry = {longest['Ry']:g}, "
+                      f"n = {longest['n']:.0f}, p0 error {longest['err_p0']:+.2%}")
+        ax2.grid(True, alpha=0.3)
+        ax2.legend(fontsize=7)
+    fig.suptitle("Ellipsoids in 3D against elliptical Hertz")
+    return _save(fig, path)
+
+
+def calibration(frame: pd.DataFrame, path: Path) -> Path:
+    """The estimate against the truth (closed forms), its effectivity, and
+    -accuracy's achieved error against its target."""
+    df = frame[frame["status"].isin(["converged", "inaccurate"])].copy()
+    df["true"] = max_error(df)
+    df["est"] = df["accuracy_predicted"]
+    df["group"] = df["variant"].where(~df["variant"].str.startswith("accuracy"), "-accuracy")
+    fig, axes = plt.subplots(1, 3, figsize=(18, 5.6))
+    colors = dict(zip(sorted(df["group"].unique()), [plt.get_cmap("tab10")(k) for k in range(10)]))
+    for group, g in df.groupby("group"):
+        axes[0].scatter(g["true"] * 100, g["est"] * 100, s=22, color=colors[group], label=group)
+        axes[1].scatter(g["true"] * 100, g["est"] / g["true"], s=22, color=colors[group], label=group)
+    lim = np.array([1e-4, 30.0])
+    axes[0].plot(lim, lim, "k-", lw=1, label="estimate = truth")
+    axes[0].fill_between(lim, lim / 2, lim * 3, color="grey", alpha=0.15, label="truth/2 to 3 truth")
+    axes[0].set(xscale="log", yscale="log", xlabel="true max |error| of p0, F, a (and b) [%]",
+                ylabel="estimated max error (no Hertz) [%]", title="Estimate against truth")
+    axes[1].axhspan(0.5, 3, color="grey", alpha=0.15, label="target band 0.5 to 3")
+    axes[1].axhline(1, color="k", lw=1)
+    axes[1].set(xscale="log", yscale="log", xlabel="true max |error| [%]",
+                ylabel="effectivity = estimate / truth", title="Effectivity")
+    axes[1].yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+    axes[1].yaxis.set_minor_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+    acc = df[df["group"] == "-accuracy"]
+    for status, g in acc.groupby("status"):
+        axes[2].scatter(g["accuracy_target"] * 100, g["true"] * 100, s=28,
+                        color=STATUS_COLORS.get(status, "k"), label=f"achieved ({status})", zorder=3)
+        axes[2].scatter(g["accuracy_target"] * 100, g["est"] * 100, s=28, marker="x",
+                        color=STATUS_COLORS.get(status, "k"), label=f"estimated ({status})", zorder=3)
+    targets = np.array([0.08, 6.0])
+    axes[2].plot(targets, targets, "k-", lw=1, label="error = target")
+    axes[2].set(xscale="log", yscale="log", xlabel="-accuracy target X [%]", ylabel="max error [%]",
+                title="-accuracy X: achieved (truth) and estimated error")
+    for ax in axes:
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle(f"Error estimate calibration: {len(df)} cases with closed forms ({_scene(df) or 'many scenes'})")
     return _save(fig, path)

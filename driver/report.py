@@ -56,10 +56,28 @@ def _fmt_table(best: pd.DataFrame) -> str:
     return "\n".join(lines)
 
 
+def _pct(value: float) -> str:
+    return "-" if pd.isna(value) else f"{value:+.3%}"
+
+
+def _fmt_3d(frame: pd.DataFrame) -> str:
+    head = ("| case | model | method | n | status | ndof | wall time [s] | memory [MB] | err p0 | err F "
+            "| err a | err b | estimate |")
+    lines = [head, "|" + "---|" * (head.count("|") - 1)]
+    for _, r in frame.sort_values(["model", "Ry", "Rx", "method", "order", "n"]).iterrows():
+        lines.append(
+            f"| `{r['case_id']}` | {r['model']} | {r['method']} P{r['order']:.0f} | {r['n']:.0f} | {r['status']} "
+            f"| {r['ndof']:.0f} | {r['wall_time']:.2f} | {r['memory_mb']:.0f} | {r['err_p0']:+.3%} "
+            f"| {r['err_F']:+.3%} | {r['err_a']:+.3%} | {_pct(r['err_b'])} | {r['accuracy_predicted']:.3%} |")
+    return "\n".join(lines)
+
+
 CAPTIONS = {
     "accuracy_vs_speed": "Max relative error over p0, F and a against the wall time the driver measured, "
-                         "every converged sphere case of every study; the black line is the Pareto front "
-                         "(no case is both faster and more accurate).",
+                         "every converged sphere case of every study (open markers: the sphere solved in "
+                         "3D); the black line is the Pareto front (no case is both faster and more "
+                         "accurate). Right: the same cases by their own error estimate, as a user without "
+                         "a closed form would see them.",
     "penalty": "Left: max error and penetration / d against the absolute penalty (seed scene). The "
                "penalty error falls as 1/kpen down to the discretization floor; lagrange and Uzawa have "
                "no penalty error. Right: iterations over all levels.",
@@ -82,6 +100,18 @@ CAPTIONS = {
     "axis_stresses": "sigma_z, sigma_r and tau_max = |sigma_r - sigma_z|/2 along the axis against Hertz.",
     "domain": "Force bias of the clamped finite domain against its radius L/a (exact contact, so no "
               "penalty error): it follows 0.94% x 100a/L until the discretization floor.",
+    "over_modelling": "The same sphere solved axisymmetric (solid) and in 3D (dashed, a quarter of the "
+                      "half-space on TetGen meshes) over meshes: error against wall time, peak memory and "
+                      "dofs. The title compares, at the most accurate converged 3D case, the cheapest axi case "
+                      "that is at least as accurate (same method).",
+    "calibration": "Left and middle: the run's own error estimate (no Hertz) against the true max error "
+                   "of p0, F and a on scenes with closed forms (nu from -0.5 to 0.499, d/R from 1e-6 to 0.1, "
+                   "SI units, plane strain, P1, lagrange, and -accuracy runs); the band is estimate/truth "
+                   "from 0.5 to 3. Right: -accuracy X, the true error reached (dots) and the estimate "
+                   "(crosses) against X; points on or below the line meet the target.",
+    "ellipses": "Left: the contact outline (gap threshold along rays) for each ellipsoid at its finest mesh, "
+                "against Hertz's ellipse. Right: the pressure along both axes of the most elongated one "
+                "against p0 sqrt(1 - (s/semi-axis)^2).",
     "units": "The same dimensionless scenes given in three unit systems: the errors agree to rounding "
              "(the spread under each scene is the largest difference of any relative error).",
 }
@@ -135,6 +165,16 @@ def write_report(results_dir: Path) -> Path:
     if "units" in tables:
         charts["units"] = plots.units_check(tables["units"], results_dir / "units.png")
 
+    if "calibration" in tables:
+        charts["calibration"] = plots.calibration(tables["calibration"], results_dir / "calibration.png")
+    if "3d" in tables:
+        charts["over_modelling"] = plots.over_modelling(tables["3d"], results_dir / "over_modelling.png")
+        outline, profile, profile_y = (results_dir / "3d" / f"{name}.csv"
+                                       for name in ("outline", "profile", "profile_y"))
+        if outline.exists() and profile.exists() and profile_y.exists():
+            charts["ellipses"] = plots.ellipses(tables["3d"], table.read(outline), table.read(profile),
+                                                table.read(profile_y), results_dir / "ellipses.png")
+
     best = best_configurations(tables)
     counts = {name: len(t) for name, t in tables.items()}
     text = ["# Results", "",
@@ -145,6 +185,11 @@ def write_report(results_dir: Path) -> Path:
              "Fastest converged sphere case of the speed study whose max |error| over p0, F and a is "
              "within the level; its wall time is the median of the repeated runs listed.", "",
              _fmt_table(best), ""]
+    if "3d" in tables:
+        text += ["## 3D cases", "",
+                 "Every case of the 3d study: the sphere as axi and as 3d, and ellipsoids against elliptical "
+                 "Hertz (a along x, b along y). The estimate is the solver's own (no Hertz).", "",
+                 _fmt_3d(tables["3d"]), ""]
     for name, path in charts.items():
         text += [f"## {name.replace('_', ' ').capitalize()}", "", f"![{name}]({path.name})", "",
                  CAPTIONS[name], ""]

@@ -23,9 +23,11 @@ if [ "${1:-}" = "--peers" ]; then
 fi
 
 if ! command -v FreeFem++ >/dev/null || [ ! -e /usr/lib/freefem++/MUMPS_seq.so ] \
-   || [ ! -e /usr/include/freefem++/idp/getARGV.idp ]; then
+   || [ ! -e /usr/include/freefem++/idp/getARGV.idp ] || ! dpkg -s libopenblas0-serial >/dev/null 2>&1; then
   echo "setup: installing FreeFEM from Debian packages"
-  apt_install freefem++ libfreefem++ libfreefem++-dev
+  # the serial OpenBLAS replaces the reference BLAS under MUMPS (update-alternatives):
+  # 3 to 5 times faster factorizations on 3D meshes, one thread per case
+  apt_install freefem++ libfreefem++ libfreefem++-dev libopenblas0-serial
 fi
 
 # Debian's /etc/freefem++.pref points at /usr/lib/ff++/4.9/{lib,idp}, which do

@@ -123,10 +123,11 @@ def stability_study(quick: bool) -> list[Case]:
                 + ("" if c.get("linesearch", 1) else ", no line search")
                 + (", continuation" if c.get("cont", 0) else ""))
     # the default path (coarse start, line search, no continuation) must converge
+    # (P1 at n = 16 is 4% off on p0 and says so: inaccurate, whatever the iteration does)
     cases += labelled(newton, newton_label,
                       lambda c: c.get("start") == "coarse" and c.get("linesearch", 1) == 1
-                      and c.get("cont", 0) == 0 and c.get("gamma") >= 10)
-    cases += labelled(exact, method_label, lambda c: c.get("method") == "lagrange")
+                      and c.get("cont", 0) == 0 and c.get("gamma") >= 10 and c.get("order", 2) == 2)
+    cases += labelled(exact, method_label, lambda c: c.get("method") == "lagrange" and c.get("order", 2) == 2)
     return cases
 
 
@@ -178,6 +179,31 @@ def figures_study(quick: bool) -> list[Case]:
     return cases
 
 
+def calibration_study(quick: bool) -> list[Case]:
+    """The error estimate against the true error on scenes with closed forms
+    (units, nu, depth, plane, P1, lagrange), and -accuracy X on several scenes."""
+    if quick:
+        return [Case.of(nu=-0.5).labelled("nu", False),
+                Case.of(model="plane", nu=0.3, d=0.01).labelled("plane", False),
+                Case.of(accuracy=0.01).labelled("accuracy 0.01"),
+                Case.of(nu=0.45, accuracy=0.01).labelled("accuracy 0.01")]
+    cases = [Case.of(nu=nu).labelled("nu", False) for nu in [-0.5, 0.0, 0.3, 0.45, 0.49, 0.499]]
+    cases += [Case.of(d=0.5 * ratio).labelled("depth", False) for ratio in [1e-6, 1e-4, 1e-2, 0.1]]
+    cases += [Case.of(E=210e9, R=0.01, d=1e-5).labelled("SI steel", False),
+              Case.of(E=2e6, nu=0.49, R=0.005, d=2e-4).labelled("SI rubber", False)]
+    cases += labelled(grid(Case.of(model="plane"), nu=[0.3, 0.45], d=[0.01, 0.04]), lambda c: "plane",
+                      lambda c: False)
+    cases += labelled(grid(Case.of(order=1), n=[16, 32]), lambda c: "P1", lambda c: False)
+    cases += labelled(grid(Case.of(method="lagrange"), nu=[0.3, 0.45, 0.49]), lambda c: "lagrange",
+                      lambda c: False)
+    # -accuracy must reach X by the truth, or say why (inaccurate)
+    scenes = [Case(), Case.of(nu=0.45), Case.of(E=2e6, nu=0.49, R=0.005, d=2e-4), Case.of(d=0.5e-4),
+              Case.of(model="plane")]
+    for x in [0.05, 0.01, 0.003, 0.001]:
+        cases += [c.with_(accuracy=x).labelled(f"accuracy {x:g}") for c in scenes]
+    return cases
+
+
 # Ellipsoids by their radii (Rx, Ry) on the seed scene's depth: the
 # long semi-axis lies along the larger radius.
 ELLIPSOIDS = {"Ry/Rx = 2": (0.5, 1.0), "Ry/Rx = 4": (0.5, 2.0), "Rx/Ry = 4": (2.0, 0.5)}
@@ -222,6 +248,7 @@ STUDIES = {s.name: s for s in [
     Study("speed", speed_study, repeats=3),
     Study("units", units_study),
     Study("figures", figures_study, keep=("profile.csv", "axis.csv")),
+    Study("calibration", calibration_study),
     Study("3d", study_3d, keep=("profile.csv", "profile_y.csv", "outline.csv")),
 ]}
 
