@@ -12,13 +12,15 @@ setup:                            ## FreeFEM + MUMPS from Debian, path fix, the 
 run:                              ## the seed case, with its files in results/local/default
 	cd edp && FreeFem++ -nw -v 0 hertz.edp -kpen 1e5 -out ../results/local/default
 
-sweep:                            ## every study (resumable: only missing or stale rows run), then the report
+sweep:                            ## every study (resumable: only missing or stale rows run), then the report and the field picture
 	$(PYTHON) -m driver sweep --all --jobs $(JOBS)
 	$(PYTHON) -m driver report
+	$(PYTHON) -m driver field
 
 rerun:                            ## every study recomputed from scratch, then the report
 	$(PYTHON) -m driver sweep --all --force --jobs $(JOBS)
 	$(PYTHON) -m driver report
+	$(PYTHON) -m driver field
 
 sweep-quick:                      ## the quick subsets, into results/local/quick (not tracked)
 	$(PYTHON) -m driver sweep --all --quick --jobs $(JOBS) --results results/local/quick

@@ -88,6 +88,9 @@ def build_parser(with_solver_options: bool = False) -> argparse.ArgumentParser:
                        help="where the table goes (default: %(default)s, not tracked)")
 
     sub.add_parser("options", help="hertz.edp's option table")
+
+    field = sub.add_parser("field", help="render the seed case's von Mises field to results/field.png (pyvista)")
+    _results(field)
     return parser
 
 
@@ -108,6 +111,17 @@ def main(argv: list[str] | None = None) -> int:
         if args.command == "bench":
             from driver.bench import bench
             return bench(args.out, args.repeat)
+        if args.command == "field":
+            from driver.fields import make_field_picture
+            try:
+                print(make_field_picture(args.results))
+            except ImportError:
+                print("error: the field picture needs pyvista: pip install -e '.[fields]'", file=sys.stderr)
+                return 2
+            except RuntimeError as exc:
+                print(f"error: {exc}", file=sys.stderr)
+                return EXIT_FAILED
+            return 0
         if args.command == "options":
             for option in freefem.options().values():
                 print(f"-{option.name:12s} {option.default:24s} {option.range:32s} {option.help}")

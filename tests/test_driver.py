@@ -414,6 +414,10 @@ def test_a_resumed_sweep_kills_a_leftover_solver_of_its_case(tmp_path):
     token = "leftover-token"
     leftover = subprocess.Popen(["sleep", "60"], env=os.environ | {MARKER: token}, start_new_session=True)
     (workdir / "freefem.pid").write_text(f"{leftover.pid} {token}\n")
+    # until exec, /proc shows the parent's environment: wait for the marker
+    deadline = time.monotonic() + 5
+    while not processes_with(token) and time.monotonic() < deadline:
+        time.sleep(0.01)
     assert processes_with(token)
     sweep("t", [case], tmp_path, jobs=1, timeout=120)
     time.sleep(0.2)

@@ -5,6 +5,8 @@ import shutil
 import subprocess
 import sys
 
+import pytest
+
 from driver import ROOT, table
 from driver.plots import sphere_cases
 from driver.report import LEVELS
@@ -37,3 +39,17 @@ def test_report_runs_without_freefem_and_matches_the_data(quick_results, tmp_pat
         assert float(cells[4]) == round(row["wall_time"], 3) and cells[5] == row["timings"]
         # nothing in the speed study reaches the level faster (medians of repeated runs)
         assert candidates[candidates["max_err"] <= level]["wall_time"].min() == row["wall_time"]
+
+
+def test_the_field_picture_renders_the_stress_near_the_contact(tmp_path):
+    pytest.importorskip("pyvista")
+    import matplotlib.image
+
+    from driver.fields import make_field_picture
+    png = make_field_picture(tmp_path)
+    image = matplotlib.image.imread(png)
+    assert image.shape[0] >= 500 and image.shape[1] >= 800
+    # a coloured field, not a blank window: many distinct colours
+    colours = {tuple(px) for px in (image[::7, ::7, :3] * 255).astype(int).reshape(-1, 3)}
+    assert len(colours) > 200
+    assert (tmp_path / "runs" / "field" / "seed_near.vtu").exists()
