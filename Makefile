@@ -32,7 +32,7 @@ bench:                            ## timings: medians of interleaved runs, peers
 	bash driver/setup.sh --peers
 	$(PYTHON) -m driver bench
 
-test:                             ## the test suite (about 3 minutes on 2 cores; writes nothing tracked)
+test:                             ## the test suite (about 5 minutes on 2 cores; writes nothing tracked)
 	$(PYTHON) -m pytest -q tests
 
 lint:                             ## FreeFEM compiles, ruff and mypy are clean

@@ -38,22 +38,23 @@ class Solve:
 
 
 @functools.cache
-def _solve(args: tuple[str, ...], outdir: str, with_out: bool) -> Solve:
+def _solve(args: tuple[str, ...], outdir: str, with_out: bool, timeout: float) -> Solve:
     extra = ["-out", outdir] if with_out else []
     proc = subprocess.run(freefem.command(list(args) + extra), capture_output=True, text=True,
-                          env=freefem.freefem_env(), timeout=600)
+                          env=freefem.freefem_env(), timeout=timeout)
     return Solve(proc.returncode, proc.stdout, proc.stderr, Path(outdir))
 
 
 @pytest.fixture(scope="session")
 def solve(tmp_path_factory):
     """solve("-kpen", "1e5", ...) -> Solve with its files in a temporary -out
-    directory; identical calls share one run. out=False leaves -out off."""
+    directory; identical calls share one run. out=False leaves -out off; a run
+    beyond timeout seconds fails the test (subprocess.TimeoutExpired)."""
     root = tmp_path_factory.mktemp("runs")
 
-    def run(*args: str, out: bool = True) -> Solve:
+    def run(*args: str, out: bool = True, timeout: float = 600) -> Solve:
         name = "_".join(a.strip("-").replace("/", "_") for a in args) or "default"
-        return _solve(tuple(args), str(root / name[:150]), out)
+        return _solve(tuple(args), str(root / name[:150]), out, timeout)
     return run
 
 

@@ -47,9 +47,7 @@ def test_penalties_rounding_would_fake_are_refused_up_front(solve, args):
 
 
 def test_uzawa_at_a_hopeless_penalty_stops_early(solve):
-    start = time.perf_counter()
-    run = solve("-method", "uzawa", "-gamma", "1e-6", "-maxit", "100000")
-    assert time.perf_counter() - start < 120
+    run = solve("-method", "uzawa", "-gamma", "1e-6", "-maxit", "100000", timeout=120)
     assert run.exit_code == 3 and run.summary["status"] == "stalled"
 
 
