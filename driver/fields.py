@@ -29,7 +29,10 @@ def run_case(workdir: Path) -> Path:
 def render(near: Path, contact_radius: float, png: Path) -> Path:
     """von Mises in the r-z plane within 2.5 contact radii, with the contact marked."""
     import pyvista as pv  # optional: only this command needs it
+    from vtkmodules.vtkCommonCore import vtkLogger
 
+    # without a display VTK warns once that it has no X server, then renders off-screen anyway
+    vtkLogger.SetStderrVerbosity(vtkLogger.VERBOSITY_ERROR)
     pv.OFF_SCREEN = True
     mesh = pv.read(near)
     a = contact_radius
