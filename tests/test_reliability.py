@@ -20,14 +20,14 @@ def test_a_failed_write_exits_4_and_keeps_the_earlier_files(tmp_path):
     (out / "summary.csv").write_text("an earlier result\n")
     proc = run_limited(["-n", "8", "-out", str(out)], file_kb=4)  # profile.csv needs more
     assert proc.returncode == 4, proc.stdout
-    assert "cannot write the output files" in proc.stdout
+    assert "cannot write the output files" in proc.stderr  # errors go to stderr, apart from the results
     assert (out / "summary.csv").read_text() == "an earlier result\n"  # not replaced by a short file
     assert not list(out.glob("*.part"))
 
 
 def test_a_failed_vtk_write_exits_4(tmp_path):
     proc = run_limited(["-n", "8", "-vtk", str(tmp_path / "f.vtu")], file_kb=64)
-    assert proc.returncode == 4 and "cannot write the VTK files" in proc.stdout
+    assert proc.returncode == 4 and "cannot write the VTK files" in proc.stderr
 
 
 def test_an_explicit_tolerance_below_the_rounding_floor_is_roundoff_not_converged(solve):
