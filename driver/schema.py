@@ -8,7 +8,7 @@ LEADING = ["study", "case_id", "variant", "expect_converged"]
 TRAILING = ["edp_hash", "wall_time", "timings", "max_rss_mb", "jobs", "exit_code", "error"]
 
 # read as text whatever they look like (an edp_hash such as 05426170e796 is not a number)
-TEXT_COLUMNS = ["study", "case_id", "variant", "edp_hash", "error", "model", "method", "start",
+TEXT_COLUMNS = ["study", "case_id", "variant", "edp_hash", "error", "model", "method", "start", "farfield", "formulation",
                 "status", "warnings", "timings"]
 
 # statuses: hertz.edp's (README), then the driver's own
