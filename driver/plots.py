@@ -29,9 +29,9 @@ QUANTITY_COLORS = ("#1565c0", "#c62828", "#2e7d32")
 STATUS_COLORS = {"converged": "#009E73", "inaccurate": "#F0E442", "roundoff": "#56B4E9",
                  "stalled": "#E69F00", "maxiter": "#CC79A7", "diverged": "#D55E00",
                  "nan": "#0072B2", "timeout": "#999999", "failed": "#000000"}
-STATUS_HATCHES = {"converged": "", "inaccurate": "..", "roundoff": "//", "stalled": "\\\\",
-                  "maxiter": "--", "diverged": "xx", "nan": "++", "timeout": "||", "failed": "oo"}
-DARK_STATUSES = ("failed", "nan", "diverged")  # white text on these cells
+STATUS_HATCHES = {"converged": "", "inaccurate": ".", "roundoff": "/", "stalled": "\\\\", "maxiter": "-",
+                  "diverged": "x", "nan": "+", "timeout": "|", "failed": "o"}
+CELL_EDGE = (0, 0, 0, 0.3)  # cell borders and hatches: light enough to read the numbers through
 METHOD_STYLE = {("newton", 2): ("#1565c0", "o"), ("newton", 1): ("#64b5f6", "s"),
                 ("lagrange", 2): ("#2e7d32", "D"), ("lagrange", 1): ("#a5d6a7", "d"),
                 ("uzawa", 2): ("#6a1b9a", "P"), ("uzawa", 1): ("#ce93d8", "p"),
@@ -212,9 +212,9 @@ def _grid(ax, frame: pd.DataFrame, xcol: str, ycol: str, text) -> None:
     for _, row in frame.iterrows():
         i, j = xs.index(row[xcol]), ys.index(row[ycol])
         ax.add_patch(plt.Rectangle((i - 0.5, j - 0.5), 1, 1, facecolor=STATUS_COLORS.get(row["status"], "white"),
-                                   hatch=STATUS_HATCHES.get(row["status"], ""), edgecolor="#444444", lw=0.3))
+                                   hatch=STATUS_HATCHES.get(row["status"], ""), edgecolor=CELL_EDGE, lw=0.3))
         ax.text(i, j, text(row), ha="center", va="center", fontsize=6.5,
-                color="white" if row["status"] in DARK_STATUSES else "black")
+                bbox={"boxstyle": "round,pad=0.15", "facecolor": (1, 1, 1, 0.75), "edgecolor": "none"})
     ax.set_xticks(range(len(xs)), [_tick(x) for x in xs], rotation=45, fontsize=7)
     ax.set_yticks(range(len(ys)), [str(y) for y in ys], fontsize=7)
     ax.set_xlim(-0.5, len(xs) - 0.5)
@@ -254,7 +254,7 @@ def stability_map(frame: pd.DataFrame, path: Path) -> Path:
           lambda r: f"{r['iterations'] + r['coarse_iterations']:.0f}")
     axes[2].set(title="Exact methods: iterations (all levels)", xlabel="augmentation c = gamma E*/h",
                 ylabel="")
-    handles = [plt.Rectangle((0, 0), 1, 1, facecolor=STATUS_COLORS[s], hatch=STATUS_HATCHES[s], edgecolor="#444444")
+    handles = [plt.Rectangle((0, 0), 1, 1, facecolor=STATUS_COLORS[s], hatch=STATUS_HATCHES[s], edgecolor=CELL_EDGE)
                for s in STATUS_COLORS]
     fig.legend(handles, STATUS_COLORS.keys(), loc="lower center", ncol=len(STATUS_COLORS), fontsize=8)
     fig.tight_layout(rect=(0, 0.05, 1, 1))
