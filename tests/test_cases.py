@@ -25,7 +25,7 @@ values = st.one_of(st.text(max_size=40), st.floats(allow_nan=False), st.integers
 
 @given(st.dictionaries(st.sampled_from(["model", "vtk", "out", "kpen", "n"]), values, min_size=1, max_size=3))
 def test_a_case_id_is_one_safe_file_name_whatever_the_values(params):
-    # a value such as ../../victim must not become a path (finding 4)
+    # a value such as ../../victim must not become a path
     case_id = Case.of(**params).case_id
     assert "/" not in case_id and "\0" not in case_id and case_id not in (".", "..")
     assert len(case_id.encode()) < 255 and case_id.isascii()

@@ -23,12 +23,12 @@ def test_version():
 @pytest.mark.parametrize("args,words", [
     (["sweep", "kpen", "--jobs", "0"], "--jobs"),
     (["sweep", "kpen", "--timeout", "-1"], "--timeout"),
-    (["sweep", "kpen", "--timeout", "1e10"], "(0, 1e+06] seconds"),  # finding 12: OverflowError, then no timeout
+    (["sweep", "kpen", "--timeout", "1e10"], "(0, 1e+06] seconds"),  # was an OverflowError, then no timeout
     (["run", "--timeout", "1e10"], "(0, 1e+06] seconds"),
     (["run", "--timeout", "inf"], "--timeout"),
     (["sweep", "nosuch"], "unknown study 'nosuch'"),
     (["sweep"], "at least one study"),
-    (["run", "--n", "6", "--n", "8"], "--n is given twice"),  # finding 16: n = 8 ran
+    (["run", "--n", "6", "--n", "8"], "--n is given twice"),  # n = 8 used to run
     (["sweep", "kpen", "--jobs", "1", "--jobs", "2"], "--jobs is given twice"),
     (["run", "--nu", "0.7"], "--nu must be a number in (-1, 0.5), got '0.7'"),
     (["run", "--kpen", "-1"], "--kpen must be a number in (0, inf), got '-1'"),
@@ -43,7 +43,7 @@ def test_bad_arguments_are_one_line_and_exit_2(tmp_path, args, words):
 
 
 def test_values_that_would_escape_the_results_folder_touch_nothing_outside(tmp_path):
-    # finding 4: --model ../../victim became part of the work folder, which escaped and was cleaned
+    # --model ../../victim used to become part of the work folder, which escaped and was cleaned
     home = tmp_path / "a" / "b" / "c"
     home.mkdir(parents=True)
     victim = tmp_path / "victim"
@@ -59,7 +59,7 @@ def test_values_that_would_escape_the_results_folder_touch_nothing_outside(tmp_p
 
 @pytest.mark.parametrize("args", [["--nu", "0.7"], ["--d", "0.6"], ["--method", "lagrange", "--d", "0.6"]])
 def test_a_rejected_run_prints_only_the_error_and_leaves_nothing_behind(tmp_path, args):
-    # finding 18: the error, then a row of NaN on stdout and a runs/single/... folder
+    # it used to print the error, then a row of NaN on stdout, and leave a runs/single/... folder
     proc = hertz("run", *args, cwd=tmp_path)
     line = one_error_line(proc)
     assert "-nu" in line or "-d must be a number in (0, 1) R" in line
@@ -76,7 +76,7 @@ def test_run_takes_every_solver_option_and_prints_json_at_full_precision(tmp_pat
 
 
 def test_run_writes_under_the_working_folder_by_default(tmp_path):
-    # finding 20: an editable install wrote every run into the clone
+    # an editable install used to write every run into the clone
     proc = cli("run", "--n", "8", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
     assert (tmp_path / "results" / "runs" / "single" / "n=8" / "summary.csv").is_file()
@@ -170,7 +170,7 @@ class _Dashboard(http.server.BaseHTTPRequestHandler):
 
 @pytest.mark.slow
 def test_a_scheduler_address_that_speaks_http_fails_within_the_connect_timeout(tmp_path):
-    # finding 6: the dashboard's port hung the sweep forever, with no output
+    # the dashboard's port used to hang the sweep forever, with no output
     server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), _Dashboard)
     threading.Thread(target=server.serve_forever, daemon=True).start()
     try:

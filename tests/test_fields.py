@@ -14,7 +14,7 @@ def seed_field(tmp_path_factory):
 
 
 def test_the_field_is_drawn_in_units_of_a_and_p0(seed_field):
-    # finding 21: "[units of E]" read as sigma/E; Hertz readers expect sigma/p0 against z/a and r/a
+    # "[units of E]" read as sigma/E; Hertz readers expect sigma/p0 against z/a and r/a
     from driver.fields import NEAR, SCALED, scaled
     mesh, row, _ = seed_field
     field = scaled(mesh, row["a_fe"], row["p0_fe"])

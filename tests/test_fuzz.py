@@ -135,7 +135,7 @@ run_options = st.dictionaries(st.sampled_from(["model", "method", "n", "kpen", "
 @settings(max_examples=30, deadline=None)
 @given(run_options)
 def test_random_run_options_stay_inside_their_folders(options):
-    # findings 4 and 18: a value may not carry the run, or its cleanup, outside the folders it names
+    # a value may not carry the run, or its cleanup, outside the folders it names
     from driver.api import solve_case
     from driver.errors import HertzError
     with tempfile.TemporaryDirectory() as tmp:

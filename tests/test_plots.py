@@ -34,7 +34,7 @@ def _lab(color: str, vision: str) -> np.ndarray:
 
 @pytest.mark.parametrize("vision", list(VISION))
 def test_converged_and_inaccurate_are_far_apart_for_every_reader(vision):
-    # finding 21: olive against green (delta E 32 for protanopes); a clear difference is above 50
+    # olive against green (delta E 32 for protanopes); a clear difference is above 50
     colors = plots.STATUS_COLORS
     distance = np.linalg.norm(_lab(colors["converged"], vision) - _lab(colors["inaccurate"], vision))
     assert distance > 50, distance

@@ -55,7 +55,7 @@ def test_report_runs_without_freefem_and_matches_the_data(quick_results, tmp_pat
 
 @pytest.mark.parametrize("study", list(STUDIES))
 def test_one_study_alone_gives_its_charts_and_a_note_for_each_other(quick_results, tmp_path, study):
-    # finding 7: with one study present most charts raised (No objects to concatenate, ...)
+    # with one study present most charts used to raise (No objects to concatenate, ...)
     results = _copy(quick_results, tmp_path / "results", studies={study})
     notes: list[str] = []
     report = write_report(results, say=notes.append)
@@ -82,7 +82,7 @@ def test_header_only_tables_are_skipped_with_a_note(quick_results, tmp_path):
 
 
 def test_an_interrupted_chart_leaves_the_old_one_whole(quick_results, tmp_path, monkeypatch):
-    # finding 8: Ctrl-C during report replaced a good penalty.png by 124 bytes
+    # Ctrl-C during report used to replace a good penalty.png by 124 bytes
     results = _copy(quick_results, tmp_path / "results", studies={"kpen"})
     write_report(results, say=lambda note: None)
     good = {p.name: p.read_bytes() for p in results.glob("*.png")}
@@ -99,7 +99,7 @@ def test_an_interrupted_chart_leaves_the_old_one_whole(quick_results, tmp_path, 
 
 
 def test_a_full_disk_is_one_clear_error_and_keeps_the_charts(quick_results, tmp_path):
-    # finding 7: a full disk gave a PIL traceback; a file size limit fails writes the same way
+    # a full disk used to give a PIL traceback; a file size limit fails writes the same way
     results = _copy(quick_results, tmp_path / "results", studies={"kpen", "mesh"})
     write_report(results, say=lambda note: None)
     charts = {p.name: p.read_bytes() for p in results.glob("*.png")}

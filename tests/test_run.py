@@ -51,7 +51,7 @@ def test_a_relative_work_folder_is_the_callers_not_the_solvers(tmp_path, monkeyp
 
 
 def test_files_of_an_earlier_run_are_removed_before_a_run(tmp_path):
-    # finding 11: a 3D run left outline.csv and profile_y.csv; a 2D run there must not keep them
+    # a 3D run left outline.csv and profile_y.csv; a 2D run there must not keep them
     workdir = tmp_path / "case"
     workdir.mkdir()
     for name in ("outline.csv", "profile_y.csv", "anything.csv", "fields_near.vtu"):
@@ -108,7 +108,7 @@ def test_the_timeout_holds_against_a_solver_that_ignores_signals_in_its_group(fa
 
 @pytest.mark.slow
 def test_two_runs_of_one_case_at_once_both_finish(fake_solver, tmp_path):
-    # finding 3: the second run used to take the first's pid file for a leftover and kill it
+    # the second run used to take the first's pid file for a leftover and kill it
     env = dict(os.environ, FAKE_MODE="slow", FAKE_DELAY="3")
     first = subprocess.Popen([sys.executable, "-m", "driver", "run", "--n", "8", "--results", str(tmp_path)],
                              cwd=REPO, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -134,7 +134,7 @@ print(value.value)
 
 
 def test_importing_the_driver_changes_nothing_in_the_process():
-    # finding 17: importing driver.run made every importer a child subreaper
+    # importing driver.run used to make every importer a child subreaper
     imports = "import driver, driver.run, driver.sweeps, driver.api, driver.report, driver.cli, driver.commands.sweep"
     proc = subprocess.run([sys.executable, "-c", SUBREAPER.format(imports=imports)], cwd=REPO,
                           capture_output=True, text=True)

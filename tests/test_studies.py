@@ -67,7 +67,7 @@ def test_a_json_spec_must_be_an_object(tmp_path, text):
 @pytest.mark.parametrize("text", ['{"name": "d", "grid": {"n": [4]}, "grid": {"n": [8]}}',
                                   '{"name": "d", "grid": {"n": [4], "n": [8]}}'])
 def test_a_json_key_given_twice_is_refused(tmp_path, text):
-    # finding 16: json keeps the last of a repeated key, silently
+    # json keeps the last of a repeated key, silently: refused instead
     spec = tmp_path / "s.json"
     spec.write_text(text)
     with pytest.raises(SpecError, match="given twice"):
@@ -96,7 +96,7 @@ sys.exit(main(["sweep", "--spec", sys.argv[1], "--results", sys.argv[2], "--yes"
 
 
 def test_a_grid_is_counted_before_it_is_built(tmp_path):
-    # finding 5: 7e8 cases were built (past 12 GB) before the size check
+    # 7e8 cases used to be built (past 12 GB) before the size check
     axes = {name: [float(k + 1) for k in range(60)] for name in ("kpen", "E", "R", "gamma")}
     axes["order"] = [1, 2]
     axes["n"] = list(range(4, 34))

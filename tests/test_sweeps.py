@@ -48,7 +48,7 @@ def test_a_completed_forced_rerun_keeps_the_rows_it_replaced_in_stale(tmp_path):
 
 @pytest.mark.slow
 def test_ctrl_c_during_a_forced_rerun_keeps_every_old_row(fake_solver, tmp_path):
-    # finding 1: --force deleted the old rows before their reruns finished
+    # --force used to delete the old rows before their reruns finished
     spec = tmp_path / "s.toml"
     spec.write_text('name = "t"\n[base]\nn = 4\nL = 50.0\n[grid]\nkpen = [1e5, 1e6, 1e7]\n')
     first = cli("sweep", "--spec", str(spec), "--results", str(tmp_path), "--no-progress",
@@ -74,7 +74,7 @@ def test_ctrl_c_during_a_forced_rerun_keeps_every_old_row(fake_solver, tmp_path)
 
 
 def test_a_converged_row_without_its_answer_is_run_again(tmp_path):
-    # finding 13, in a sweep: the edited row is set aside and its case runs
+    # in a sweep: the edited row is set aside and its case runs
     sweep("t", [TINY], tmp_path, jobs=1, timeout=120)
     path = tmp_path / "t.csv"
     frame = pd.read_csv(path, dtype=str, keep_default_na=False)
@@ -109,14 +109,14 @@ def test_a_second_sweep_of_the_same_study_refuses(tmp_path):
 @pytest.mark.parametrize("name", ["x" * 300, "bench", "runs", "../up", "a b", "sweep_environment", "REPORT",
                                   "single", "stale"])
 def test_study_names_that_would_share_a_projects_file_are_refused(tmp_path, name):
-    # finding 2: a study named sweep_environment wrote its rows into the environment record
+    # a study named sweep_environment used to write its rows into the environment record
     with pytest.raises(TableError, match="study name"):
         sweep(name, [TINY], tmp_path, jobs=1, timeout=60)
 
 
 @pytest.mark.parametrize("planted", ["t.csv", "t.lock", "runs", "runs/t"])
 def test_a_planted_link_in_the_results_folder_stops_the_sweep(tmp_path, planted):
-    # finding 15: a dangling link at results/<study>.csv sent the rows outside the folder
+    # a dangling link at results/<study>.csv used to send the rows outside the folder
     results, outside = tmp_path / "results", tmp_path / "outside"
     results.mkdir()
     outside.mkdir()

@@ -53,7 +53,7 @@ def test_a_table_is_validated_on_load_and_bad_lines_go_aside_by_number(tmp_path)
 @pytest.mark.parametrize("edit", [{"p0_fe": ""}, {"F_fe": "nan"}, {"a_fe": "inf"},
                                   {"status": "inaccurate", "p0_fe": ""}])
 def test_a_hand_edited_answer_without_numbers_is_not_a_finished_case(tmp_path, edit):
-    # finding 13: a row marked converged with an empty p0_fe counted as done
+    # a row marked converged with an empty p0_fe used to count as done
     path = tmp_path / "t.csv"
     columns = _write_table(path, [{"case_id": "good"}, {"case_id": "edited"} | edit])
     frame, messages = table.prepare(path, columns, freefem.edp_hash())
@@ -78,7 +78,7 @@ def test_reading_a_table_needs_no_solver_and_keeps_words_as_words(tmp_path):
 
 @pytest.mark.parametrize("kind", ["table", "lock", "stale"])
 def test_a_planted_link_is_refused_not_written_through(tmp_path, kind):
-    # finding 15: a dangling link at results/<study>.csv made the sweep write outside the folder
+    # a dangling link at results/<study>.csv used to make the sweep write outside the folder
     target = tmp_path / "elsewhere" / "victim"
     target.parent.mkdir()
     columns = study_columns(freefem.summary_columns())
