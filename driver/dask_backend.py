@@ -30,7 +30,7 @@ from typing import Any
 from driver import freefem
 from driver.cases import Case
 from driver.errors import HertzError, SweepError
-from driver.run import LOG_FILE, CaseLock, _empty_row, clear_outputs, reap_leftover, run_case
+from driver.run import LOG_FILE, CaseLock, clear_outputs, empty_row, reap_leftover, run_case
 
 LOCAL_PREFIX = "local:"
 RETRIES = 2           # a task that raised runs again, on any worker
@@ -128,7 +128,7 @@ def _quiet_on_ctrl_c(start):
 
 
 def failure_row(case: Case, study: str, columns: list[str], error: str) -> dict:
-    row = _empty_row(case, study, columns)
+    row = empty_row(case, study, columns)
     row.update(status="failed", error=error[:300], timings="")
     return row
 

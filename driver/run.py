@@ -217,7 +217,7 @@ def _launcher() -> list[str]:
     return [setpriv, "--pdeathsig", "KILL", "--"] if setpriv else []
 
 
-def _empty_row(case: Case, study: str, columns: list[str]) -> dict:
+def empty_row(case: Case, study: str, columns: list[str]) -> dict:
     row: dict = {col: math.nan for col in columns}
     row.update(case.params)
     row.update(study=study, case_id=case.case_id, variant=case.variant,
@@ -305,10 +305,10 @@ def run_case(case: Case, workdir: Path, timeout: float, study: str = "",
     try:
         columns = summary_columns or freefem.summary_columns()
     except Exception as exc:  # noqa: BLE001 - a row is the answer to anything
-        row = _empty_row(case, study, schema.study_columns([]))
+        row = empty_row(case, study, schema.study_columns([]))
         row.update(status="failed", error=f"cannot read hertz.edp's columns: {exc}"[:300])
         return row
-    row = _empty_row(case, study, schema.study_columns(columns))
+    row = empty_row(case, study, schema.study_columns(columns))
     row["jobs"] = jobs
     times = []
     try:
