@@ -6,7 +6,7 @@ repository's tracked files (git ls-files, with uncommitted edits), with the
 relative paths as written, the way a newcomer types them: make targets from
 the clone's root, hertz.edp from edp/ (as the README says), and every hertz
 command both from the root and from another folder. Commands that need a cluster or take long are listed in
-EXCEPTIONS with the reason. About two to three minutes on 2 cores.
+EXCEPTIONS with the reason. About two minutes on 2 cores.
 """
 from __future__ import annotations
 
