@@ -1,10 +1,13 @@
-# Hertz contact: setup, runs, studies, report, benchmark, tests.
+# Hertz contact: setup, runs, studies, report, benchmark, tests. `make help` lists the targets.
 PYTHON ?= python3
 JOBS ?= $(shell nproc)
 
-.PHONY: all setup run sweep rerun sweep-quick report bench test lint mutate clean
+.PHONY: all help setup run sweep rerun sweep-quick report bench test test-fast lint mutate clean
 
 all: setup sweep                  ## set up, run every study, write the report
+
+help:                             ## this list
+	@grep -E '^[a-z-]+:.*## ' $(firstword $(MAKEFILE_LIST)) | sed -E 's/^([a-z-]+):.*## /\1\t/' | expand -t 14
 
 setup:                            ## FreeFEM + MUMPS from Debian, path fix, the Python package (pip install -e .)
 	bash driver/setup.sh
@@ -32,16 +35,19 @@ bench:                            ## timings: medians of interleaved runs, peers
 	bash driver/setup.sh --peers
 	$(PYTHON) -m driver bench
 
-test:                             ## the test suite (about 5 minutes on 2 cores; writes nothing tracked)
+test:                             ## the whole test suite, as CI runs it (about 6 minutes on 2 cores; writes nothing tracked)
 	$(PYTHON) -m pytest -q tests
+
+test-fast:                        ## the quick tier for the edit-run loop: pure-Python tests and a few solver runs (about a minute)
+	$(PYTHON) -m pytest -q -m "not slow" tests
 
 lint:                             ## FreeFEM compiles, ruff and mypy are clean
 	cd edp && FreeFem++ -jc -nw -v 0 hertz.edp
-	$(PYTHON) -m ruff check driver tests bench
+	$(PYTHON) -m ruff check driver tests bench setup.py
 	$(PYTHON) -m mypy driver
 
 mutate:                           ## break the guarded code on purpose, one mutation at a time; each must fail a test
 	$(PYTHON) tests/mutations.py
 
-clean:                            ## remove per-case work directories and local outputs (keeps the study tables)
+clean:                            ## remove per-case work folders and local outputs (keeps the study tables)
 	rm -rf results/runs results/local

@@ -22,11 +22,12 @@ from pathlib import Path
 
 import pandas as pd
 
-from driver import ROOT, freefem
+from driver import freefem, layout
 from driver.cases import Case
+from driver.errors import SweepError
+from driver.executors import Executor, LocalPool, make_executor
 from driver.run import run_case
 from driver.schema import study_columns
-from driver.sweep import Executor, LocalPool, SweepError, make_executor
 
 CONFIGS = {
     "default (newton P2, n=16)": Case(),
@@ -42,7 +43,7 @@ CONFIGS = {
     "3d sphere (P2, n=5)": Case.of(model="3d"),
     "3d ellipsoid Ry/Rx=4 (P2, n=5)": Case.of(Rx=0.5, Ry=2.0),
 }
-FENICS = ROOT / "bench" / "fenics_peer.py"
+FENICS = layout.PACKAGE_DIR.parent / "bench" / "fenics_peer.py"  # in a checkout only
 DEBIAN_PYTHON = "/usr/bin/python3"  # python3-dolfin is a Debian package
 
 
@@ -214,4 +215,4 @@ def bench(out: Path, repeat: int = 5) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(bench(ROOT / "results" / "local" / "bench.csv"))
+    sys.exit(bench(layout.user_path(f"{layout.DEFAULT_RESULTS}/{layout.LOCAL}/bench.csv")))

@@ -8,10 +8,15 @@ never share an id.
 from __future__ import annotations
 
 import hashlib
+import re
 from dataclasses import dataclass, replace
 from typing import Any
 
 Value = int | float | str
+
+# what a case id may hold as it is: every other character is %XX-escaped, so an
+# id is one file name whatever the values (never a path, never . or ..)
+_UNSAFE = re.compile(r"[^A-Za-z0-9._=+-]")
 
 
 def exact(value: Value) -> str:
@@ -56,8 +61,10 @@ class Case:
     @property
     def case_id(self) -> str:
         """Readable and exact: name=value pairs in name order ("defaults" for none).
-        Very long ids keep their start and end in a hash, to stay a valid file name."""
+        A safe file name: odd characters escaped; very long ids keep their start
+        and a hash of the whole."""
         text = "_".join(f"{name}={exact(value)}" for name, value in self.params) or "defaults"
+        text = _UNSAFE.sub(lambda m: "".join(f"%{b:02X}" for b in m.group().encode()), text)
         if len(text) > 150:
             text = text[:120] + "_" + hashlib.sha256(text.encode()).hexdigest()[:16]
         return text

@@ -1,7 +1,7 @@
 """Sweeps on a Dask cluster: each case is one task that runs run_case on a worker.
 
 The client keeps the table, the locks, the progress bar and the per-case
-directories (sweep.py); a worker runs the case in its own scratch directory and
+folders (sweeps.py); a worker runs the case in its own scratch directory and
 sends back the row with the case's CSV files and freefem.log. Workers need
 FreeFEM and this repository at the same commit (make setup); the client checks
 the solver code of the workers it sees and of every row that comes back.
@@ -14,6 +14,8 @@ when it is cancelled (Ctrl-C on the client, or the client gone).
 """
 from __future__ import annotations
 
+import asyncio
+import concurrent.futures
 import logging
 import os
 import shutil
@@ -27,13 +29,12 @@ from typing import Any
 
 from driver import freefem
 from driver.cases import Case
-from driver.run import OUTPUT_FILES, _empty_row, reap_leftover, run_case
-from driver.sweep import SweepError
+from driver.errors import HertzError, SweepError
+from driver.run import LOG_FILE, CaseLock, clear_outputs, empty_row, reap_leftover, run_case
 
 LOCAL_PREFIX = "local:"
 RETRIES = 2           # a task that raised runs again, on any worker
 CANCEL_POLL = 0.2     # seconds between a running task's looks at its own state
-LOG_FILE = "freefem.log"
 SCHEDULER_LOST = ("scheduler-connection-lost", "scheduler-restart")  # reasons of a cancelled future
 
 
@@ -45,6 +46,35 @@ def parse_local(address: str) -> int | None:
     if not text.isdigit() or int(text) < 1:
         raise ValueError(f"N in local:N must be a positive integer, got {address!r}")
     return int(text)
+
+
+def connect_timeout() -> float:
+    """Seconds to wait for a scheduler: Dask's own setting (distributed.comm.timeouts.connect)."""
+    import dask.config
+    from dask.utils import parse_timedelta
+    return float(parse_timedelta(dask.config.get("distributed.comm.timeouts.connect"), default="seconds"))
+
+
+def probe(address: str, timeout: float) -> None:
+    """Connect and shake hands once, within timeout seconds. Dask's Client waits for
+    the handshake without a limit, so a port that speaks something else (the
+    dashboard's HTTP) would hang it forever. In a thread of its own: the caller
+    may have an event loop running already."""
+    from distributed.comm import connect
+
+    async def shake() -> None:
+        comm = await asyncio.wait_for(connect(address, timeout=timeout), timeout)
+        await comm.close()
+    with concurrent.futures.ThreadPoolExecutor(1) as pool:
+        try:
+            pool.submit(asyncio.run, shake()).result()
+        except TimeoutError:
+            raise SweepError(f"no Dask scheduler answered at {address} within {timeout:g} s (the scheduler's "
+                             "port, usually 8786, not its dashboard's)") from None
+        except Exception as exc:  # noqa: BLE001 - whatever the comm layer raises is one line for the user
+            why = " ".join(f"{type(exc).__name__}: {exc}".split())
+            hint = " (tls:// needs Dask's TLS settings, distributed.comm.tls.*)" if address.startswith("tls") else ""
+            raise SweepError(f"cannot reach the Dask scheduler at {address}: {why}{hint}") from None
 
 
 def _worker_facts(dask_worker: Any) -> dict[str, Any]:
@@ -76,7 +106,7 @@ def run_on_worker(case: Case, study: str, sweep_id: str, timeout: float, summary
     try:
         row = run_case(case, workdir, timeout, study, summary_columns, jobs, repeats)
         files = {p.name: p.read_bytes() for p in sorted(workdir.glob("*"))
-                 if p.is_file() and (p.suffix == ".csv" or p.name == LOG_FILE)}
+                 if p.is_file() and not p.is_symlink() and (p.suffix == ".csv" or p.name == LOG_FILE)}
     finally:
         finished.set()
         watcher.join()
@@ -98,7 +128,7 @@ def _quiet_on_ctrl_c(start):
 
 
 def failure_row(case: Case, study: str, columns: list[str], error: str) -> dict:
-    row = _empty_row(case, study, columns)
+    row = empty_row(case, study, columns)
     row.update(status="failed", error=error[:300], timings="")
     return row
 
@@ -131,11 +161,16 @@ class DaskExecutor:
                                                                      silence_logs=logging.ERROR))
                 self.client = Client(self.cluster)
             else:
-                self.client = Client(address)
-        except (OSError, TimeoutError, ValueError) as exc:
+                timeout = connect_timeout()
+                probe(address, timeout)
+                self.client = Client(address, timeout=timeout)
+        except SweepError:
+            raise
+        except Exception as exc:  # noqa: BLE001 - one line for the user, whatever Dask raised
             if self.cluster is not None:
                 self.cluster.close()
-            raise SweepError(f"cannot reach the Dask scheduler at {address}: {exc}") from None
+            why = " ".join(f"{type(exc).__name__}: {exc}".split())
+            raise SweepError(f"cannot reach the Dask scheduler at {address}: {why}") from None
         self.sweep_id = uuid.uuid4().hex[:12]
         self.edp_hash = freefem.edp_hash()
         try:
@@ -188,17 +223,19 @@ class DaskExecutor:
                 raise SweepError(f"lost the Dask scheduler ({why}); the rows written so far are kept, "
                                  "run the same command to resume") from None
             result = {"row": failure_row(case, study, columns, f"Dask task lost: {why}"), "files": {}}
-        workdir.mkdir(parents=True, exist_ok=True)
-        reap_leftover(workdir)  # a local sweep killed earlier may have left its solver here
-        for name in (*OUTPUT_FILES, LOG_FILE):
-            (workdir / name).unlink(missing_ok=True)
         row = result["row"]
         if row.get("edp_hash") != self.edp_hash:
             return failure_row(case, study, columns, f"Dask worker {result.get('worker')} runs other solver "
                                f"code (edp_hash {row.get('edp_hash')}): install the same commit on every worker")
-        for name, data in result["files"].items():
-            if Path(name).name == name and not name.startswith("."):
-                _write_file(workdir / name, data)
+        try:
+            with CaseLock(workdir):
+                reap_leftover(workdir)  # a local sweep killed earlier may have left its solver here
+                clear_outputs(workdir)
+                for name, data in result["files"].items():
+                    if Path(name).name == name and not name.startswith("."):
+                        _write_file(workdir / name, data)
+        except HertzError as exc:
+            return failure_row(case, study, columns, str(exc))
         return row
 
     def cancel(self, futures: list) -> None:

@@ -1,8 +1,9 @@
-"""The one door to hertz.edp: its command line, its option table and its columns.
+"""The one door to hertz.edp: its command line, its option table, its exit codes and its columns.
 
-hertz.edp owns its options (names, defaults, ranges, meanings) and the columns
-of summary.csv; the driver asks for them (`-options`, `-columns`) instead of
-copying them, and caches the answer per solver fingerprint.
+hertz.edp owns its options (names, kinds, defaults, ranges, meanings), its exit
+codes and the columns of summary.csv; the driver asks for them (`-options`,
+`-exits`, `-columns`) instead of copying them, and caches each answer per
+solver fingerprint. Options and columns may grow: nothing here lists them.
 """
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ import csv
 import functools
 import hashlib
 import io
+import math
 import os
 import re
 import shutil
@@ -17,18 +19,14 @@ import subprocess
 from dataclasses import dataclass
 from pathlib import Path
 
-from driver import EDP_DIR, HERTZ_EDP
+from driver import layout
+from driver.errors import OptionError, SetupError
 
 FREEFEM = "FreeFem++"
 SETUP_HINT = "run 'make setup' (driver/setup.sh) to install FreeFEM"
+EDP_DIR = layout.EDP_DIR  # a module global, so that a test can point it at a copy
 
-# hertz.edp's exit codes (README): the status a row may carry with each
-EXIT_CODES = {0: "converged", 2: "rejected input", 3: "not converged", 4: "write failure",
-              5: "inaccurate"}
-
-
-class SetupError(RuntimeError):
-    """The solver cannot run at all on this machine."""
+Value = int | float | str
 
 
 def freefem_env() -> dict[str, str]:
@@ -48,7 +46,7 @@ def check_freefem() -> str:
 
 def command(args: list[str]) -> list[str]:
     """The one way hertz.edp is called: no window, quiet."""
-    return [check_freefem(), "-nw", "-v", "0", str(HERTZ_EDP), *args]
+    return [check_freefem(), "-nw", "-v", "0", str(EDP_DIR / layout.ENTRY), *args]
 
 
 _COMMENTS = re.compile(r"/\*.*?\*/|//[^\n]*", re.S)
@@ -71,11 +69,34 @@ def edp_hash() -> str:
 
 
 def _query(flag: str) -> str:
-    proc = subprocess.run(command([flag]), capture_output=True, text=True, env=freefem_env(),
-                          timeout=120, check=False)
+    try:
+        proc = subprocess.run(command([flag]), capture_output=True, text=True, env=freefem_env(),
+                              timeout=120, check=False)
+    except (OSError, subprocess.TimeoutExpired) as exc:
+        raise SetupError(f"hertz.edp {flag} could not run: {exc}") from None
     if proc.returncode != 0:
-        raise SetupError(f"hertz.edp {flag} failed (exit {proc.returncode}): {proc.stdout[-500:]}")
+        raise SetupError(f"hertz.edp {flag} failed (exit {proc.returncode}): "
+                         + " ".join(proc.stdout[-300:].split()))
     return proc.stdout
+
+
+def _table(text: str, header: str) -> list[list[str]]:
+    """The CSV rows after a header line (FreeFEM prints its own lines around them)."""
+    lines = text.splitlines()
+    if header not in lines:
+        raise SetupError(f"hertz.edp printed no table with the header {header!r}")
+    rows = []
+    for line in lines[lines.index(header) + 1:]:
+        if line.startswith("close ") or not line.strip():  # MUMPS' goodbye ends the table
+            break
+        rows.append(line)
+    return list(csv.reader(io.StringIO("\n".join(rows))))
+
+
+# a range as hertz.edp writes it: "integer in [2, 400]", "(0, inf)", "[10, 100000] a";
+# a unit after the bracket ("a", "R", "E*/h") scales the bounds with the scene
+_RANGE = re.compile(r"^(?:integer in )?([\[(])\s*([^,\s]+)\s*,\s*([^\])\s]+)\s*([\])])\s*(.*)$")
+_INTEGER = re.compile(r"^[+-]?\d+$")
 
 
 @dataclass(frozen=True)
@@ -90,15 +111,83 @@ class Option:
     def choices(self) -> list[str] | None:
         return [w.strip() for w in self.range.split(",")] if self.kind == "word" else None
 
+    def _bounds(self) -> tuple[float, float, bool, bool] | None:
+        """(low, high, low included, high included), or None when the range is not
+        a plain interval (or depends on the scene: hertz.edp checks those)."""
+        match = _RANGE.match(self.range)
+        if not match or match.group(5):
+            return None
+        opening, low, high, closing, _ = match.groups()
+        try:
+            return float(low), float(high), opening == "[", closing == "]"
+        except ValueError:
+            return None
+
+    def parse(self, value: object, label: str | None = None) -> Value:
+        """The value as hertz.edp will read it, or OptionError naming the option and its range.
+        Text (a command line) and typed values (a spec file) are both accepted."""
+        label = label or f"-{self.name}"
+        shown = value if isinstance(value, str) else repr(value)
+        if len(shown) > 40:
+            shown = shown[:30] + "..." + shown[-6:]
+        if self.kind == "word":
+            if not isinstance(value, str) or value not in (self.choices or []):
+                raise OptionError(f"{label} must be one of {self.range}, got {shown!r}")
+            return value
+        if self.kind == "path":
+            if not isinstance(value, (str, Path)) or not str(value):
+                raise OptionError(f"{label} must be a path, got {shown!r}")
+            return str(value)
+        what = "an integer" if self.kind == "int" else "a number"
+        wrong = OptionError(f"{label} must be {what} in {self.range.removeprefix('integer in ')}, got {shown!r}")
+        number: int | float
+        if isinstance(value, bool):
+            raise wrong
+        if isinstance(value, str):
+            text = value.strip()
+            if self.kind == "int":
+                if not _INTEGER.match(text):
+                    raise wrong
+                number = int(text)
+            else:
+                try:
+                    number = float(text)
+                except ValueError:
+                    raise wrong from None
+                if math.isinf(number) and text.lstrip("+-").lower() not in ("inf", "infinity"):
+                    raise wrong  # 1e400: too large to be the number typed
+        elif isinstance(value, int):
+            number = value
+        elif isinstance(value, float):
+            number = value
+            if self.kind == "int":
+                if not value.is_integer():
+                    raise wrong
+                number = int(value)
+        else:
+            raise wrong
+        if isinstance(number, float) and math.isnan(number):
+            raise wrong
+        bounds = self._bounds()
+        if bounds is not None:
+            low, high, low_in, high_in = bounds
+            # Python compares a huge int with a float exactly: no overflow here
+            if not ((low <= number if low_in else low < number) and (number <= high if high_in else number < high)):
+                raise wrong
+        elif isinstance(number, float) and math.isinf(number) and not self.range.rstrip().endswith("inf]"):
+            raise wrong
+        if self.kind == "int":
+            return int(number)
+        try:
+            return float(number)
+        except OverflowError:
+            raise wrong from None
+
 
 @functools.cache
 def _options(fingerprint: str) -> tuple[Option, ...]:
-    text = _query("-options")
-    lines = text.splitlines()
-    start = lines.index("name,kind,default,range,help")
-    rows = [ln for ln in lines[start + 1:] if ln.startswith("-")]
-    return tuple(Option(r[0].lstrip("-"), r[1], r[2], r[3], r[4])
-                 for r in csv.reader(io.StringIO("\n".join(rows))))
+    rows = _table(_query("-options"), "name,kind,default,range,help")
+    return tuple(Option(r[0].lstrip("-"), r[1], r[2], r[3], r[4]) for r in rows if r and r[0].startswith("-"))
 
 
 def options() -> dict[str, Option]:
@@ -106,11 +195,61 @@ def options() -> dict[str, Option]:
     return {o.name: o for o in _options(edp_hash())}
 
 
+# options that say where files go or what the run does, not what is solved: a case
+# (its id, its row) never carries them; the driver passes them on where it allows them
+RUN_ONLY = {"check"}
+
+
+def case_options() -> dict[str, Option]:
+    """The options that define a case: every option but paths and run modes."""
+    return {name: o for name, o in options().items() if o.kind != "path" and name not in RUN_ONLY}
+
+
+def parse_options(values: dict[str, object], prefix: str = "-") -> dict[str, Value]:
+    """Values by option name, checked against the table; OptionError for the first bad one."""
+    table = options()
+    parsed = {}
+    for name, value in values.items():
+        if name not in table:
+            raise OptionError(f"unknown option {prefix}{name}; 'hertz options' lists them")
+        parsed[name] = table[name].parse(value, f"{prefix}{name}")
+    return parsed
+
+
+@dataclass(frozen=True)
+class Exit:
+    status: str
+    code: int
+    meaning: str
+
+
+@functools.cache
+def _exits(fingerprint: str) -> tuple[Exit, ...]:
+    rows = _table(_query("-exits"), "status,code,meaning")
+    try:
+        return tuple(Exit(r[0], int(r[1]), r[2]) for r in rows if r)
+    except (ValueError, IndexError):
+        raise SetupError("hertz.edp -exits printed a malformed table") from None
+
+
+def exits() -> dict[str, Exit]:
+    """hertz.edp's exit codes by status: the statuses a run ends with and what each means."""
+    return {e.status: e for e in _exits(edp_hash())}
+
+
+def exit_code(status: str) -> int:
+    return exits()[status].code
+
+
+_IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
+
+
 @functools.cache
 def _columns(fingerprint: str) -> tuple[str, ...]:
     for line in _query("-columns").splitlines():
-        if line.startswith("model,"):
-            return tuple(line.split(","))
+        names = line.split(",")
+        if len(names) > 1 and all(_IDENTIFIER.match(n) for n in names):
+            return tuple(names)
     raise SetupError("hertz.edp -columns printed no column list")
 
 

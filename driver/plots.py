@@ -1,7 +1,10 @@
 """Charts from the study tables (PNG, matplotlib). Reads CSV files only.
 
 Series are chosen by the `variant` column the studies write, and titles take
-their facts (mesh, penalty, scene) from the rows they draw.
+their facts (mesh, penalty, scene) from the rows they draw. A chart whose rows
+are missing raises NoData (the report skips it with a note), and every PNG is
+written to a temporary file and renamed, so an interrupted report leaves the
+old chart whole.
 """
 from __future__ import annotations
 
@@ -16,15 +19,34 @@ import matplotlib.ticker  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
+from driver import files  # noqa: E402
+from driver.errors import ReportError  # noqa: E402
+
 ERRORS = {"err_p0": "p0", "err_F": "F", "err_a": "a"}
 QUANTITY_COLORS = ("#1565c0", "#c62828", "#2e7d32")
-STATUS_COLORS = {"converged": "#4caf50", "inaccurate": "#c0ca33", "roundoff": "#26c6da",
-                 "stalled": "#ff7043", "maxiter": "#ffb300", "diverged": "#e53935",
-                 "nan": "#8e24aa", "timeout": "#757575", "failed": "#212121"}
+# Okabe and Ito's colour-blind-safe palette (distinct hues and lightness), and a
+# hatch on every status but converged, so no pair depends on telling hues apart
+STATUS_COLORS = {"converged": "#009E73", "inaccurate": "#F0E442", "roundoff": "#56B4E9",
+                 "stalled": "#E69F00", "maxiter": "#CC79A7", "diverged": "#D55E00",
+                 "nan": "#0072B2", "timeout": "#999999", "failed": "#000000"}
+STATUS_HATCHES = {"converged": "", "inaccurate": ".", "roundoff": "/", "stalled": "\\\\", "maxiter": "-",
+                  "diverged": "x", "nan": "+", "timeout": "|", "failed": "o"}
+CELL_EDGE = (0, 0, 0, 0.3)  # cell borders and hatches: light enough to read the numbers through
 METHOD_STYLE = {("newton", 2): ("#1565c0", "o"), ("newton", 1): ("#64b5f6", "s"),
                 ("lagrange", 2): ("#2e7d32", "D"), ("lagrange", 1): ("#a5d6a7", "d"),
                 ("uzawa", 2): ("#6a1b9a", "P"), ("uzawa", 1): ("#ce93d8", "p"),
                 ("fixedpoint", 2): ("#c62828", "^"), ("fixedpoint", 1): ("#ef9a9a", "v")}
+
+
+class NoData(Exception):
+    """The rows a chart draws are not in the tables (a partial sweep): skip the chart."""
+
+
+def need(frame: pd.DataFrame | None, what: str) -> pd.DataFrame:
+    """The rows a chart draws, or NoData naming what is missing."""
+    if frame is None or not len(frame):
+        raise NoData(what)
+    return frame
 
 
 def max_error(frame: pd.DataFrame) -> pd.Series:
@@ -36,16 +58,20 @@ def sphere_cases(tables: dict[str, pd.DataFrame]) -> pd.DataFrame:
     """Converged sphere cases of every study (axisymmetric, and in 3D), once each
     (the same case in two studies is one point), with their max |error|."""
     frames = [t for name, t in tables.items() if len(t) and name != "figures"]
-    rows = pd.concat(frames, ignore_index=True)
+    rows = pd.concat(need(frames, "no study rows"), ignore_index=True)
     sphere = (rows["model"] == "axi") | ((rows["model"] == "3d") & (rows["Rx"] == rows["Ry"]))
     rows = rows[(rows["status"] == "converged") & sphere].drop_duplicates("case_id")
     return rows.assign(max_err=max_error(rows))
 
 
-def _save(fig, path: Path) -> Path:
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+def _save(fig, path: Path, layout: bool = True) -> Path:
+    """The chart as PNG, whole or not at all (a kill or a full disk keeps the old one)."""
+    try:
+        if layout:
+            fig.tight_layout()
+        files.replace_atomically(path, lambda tmp: fig.savefig(tmp, dpi=110, format="png"), ReportError)
+    finally:
+        plt.close(fig)
     return path
 
 
@@ -72,7 +98,7 @@ def pareto(frame: pd.DataFrame, x: str, y: str) -> pd.DataFrame:
 
 def accuracy_vs_speed(tables: dict, path: Path) -> Path:
     """Left: the error against Hertz; right: the same cases by their own estimate."""
-    rows = sphere_cases(tables)
+    rows = need(sphere_cases(tables), "no converged sphere case")
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(16, 5.8), sharey=True)
     _accuracy_panel(ax, rows, "max_err", "max |relative error| of p0, F, a against Hertz [%]",
                     f"Accuracy against speed: {len(rows)} converged sphere cases (open: solved in 3D)")
@@ -113,7 +139,7 @@ def _accuracy_panel(ax, rows: pd.DataFrame, column: str, ylabel: str, title: str
 
 
 def penalty_study(frame: pd.DataFrame, path: Path) -> Path:
-    df = frame[frame["status"].isin(["converged", "inaccurate"])]
+    df = need(frame[frame["status"].isin(["converged", "inaccurate"])], "no converged or inaccurate kpen rows")
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(13, 5.2))
     for (method, order), g in df.groupby(["method", "order"]):
         if method == "fixedpoint":
@@ -151,7 +177,7 @@ def _fit_range(h: np.ndarray, err: np.ndarray) -> slice:
 
 
 def mesh_study(frame: pd.DataFrame, path: Path) -> Path:
-    df = frame[frame["status"].isin(["converged", "inaccurate"])].copy()
+    df = need(frame[frame["status"].isin(["converged", "inaccurate"])], "no converged or inaccurate mesh rows").copy()
     df["series"] = df["variant"].str.replace(r" P\d$", "", regex=True)
     series = sorted(df["series"].unique())
     fig, axes = plt.subplots(1, len(series), figsize=(5.2 * len(series), 4.8), sharey=True, squeeze=False)
@@ -185,9 +211,10 @@ def _grid(ax, frame: pd.DataFrame, xcol: str, ycol: str, text) -> None:
     ys = list(dict.fromkeys(frame.sort_values(ycol)[ycol]))
     for _, row in frame.iterrows():
         i, j = xs.index(row[xcol]), ys.index(row[ycol])
-        ax.add_patch(plt.Rectangle((i - 0.5, j - 0.5), 1, 1,
-                                   color=STATUS_COLORS.get(row["status"], "white"), alpha=0.85))
-        ax.text(i, j, text(row), ha="center", va="center", fontsize=6.5)
+        ax.add_patch(plt.Rectangle((i - 0.5, j - 0.5), 1, 1, facecolor=STATUS_COLORS.get(row["status"], "white"),
+                                   hatch=STATUS_HATCHES.get(row["status"], ""), edgecolor=CELL_EDGE, lw=0.3))
+        ax.text(i, j, text(row), ha="center", va="center", fontsize=6.5,
+                bbox={"boxstyle": "round,pad=0.15", "facecolor": (1, 1, 1, 0.75), "edgecolor": "none"})
     ax.set_xticks(range(len(xs)), [_tick(x) for x in xs], rotation=45, fontsize=7)
     ax.set_yticks(range(len(ys)), [str(y) for y in ys], fontsize=7)
     ax.set_xlim(-0.5, len(xs) - 0.5)
@@ -201,6 +228,7 @@ def _tick(value) -> str:
 
 
 def stability_map(frame: pd.DataFrame, path: Path) -> Path:
+    need(frame, "no stability rows")
     fig, axes = plt.subplots(1, 3, figsize=(19, 6.5), gridspec_kw={"width_ratios": [1, 1.15, 0.9]})
     fp = frame[frame["method"] == "fixedpoint"]
     n_map = fp["n"].mode().iloc[0] if len(fp) else 16
@@ -226,16 +254,16 @@ def stability_map(frame: pd.DataFrame, path: Path) -> Path:
           lambda r: f"{r['iterations'] + r['coarse_iterations']:.0f}")
     axes[2].set(title="Exact methods: iterations (all levels)", xlabel="augmentation c = gamma E*/h",
                 ylabel="")
-    handles = [plt.Rectangle((0, 0), 1, 1, color=c) for c in STATUS_COLORS.values()]
+    handles = [plt.Rectangle((0, 0), 1, 1, facecolor=STATUS_COLORS[s], hatch=STATUS_HATCHES[s], edgecolor=CELL_EDGE)
+               for s in STATUS_COLORS]
     fig.legend(handles, STATUS_COLORS.keys(), loc="lower center", ncol=len(STATUS_COLORS), fontsize=8)
     fig.tight_layout(rect=(0, 0.05, 1, 1))
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return _save(fig, path, layout=False)
 
 
 def pressure_profiles(figures: pd.DataFrame, profiles: pd.DataFrame, path: Path) -> Path:
-    cases = figures[figures["variant"].str.startswith("profile")]
+    cases = need(figures[figures["variant"].str.startswith("profile")], "no profile rows in figures")
+    need(profiles, "no kept profile.csv of figures")
     fig, axes = plt.subplots(1, 2, figsize=(12, 4.8), sharey=True)
     for ax, order in zip(axes, (1, 2)):
         part = cases[cases["order"] == order].sort_values("kpen")
@@ -261,9 +289,9 @@ def pressure_profiles(figures: pd.DataFrame, profiles: pd.DataFrame, path: Path)
 
 
 def zigzag(tables: dict, path: Path) -> Path:
-    rows = pd.concat([t for name, t in tables.items() if len(t) and name != "figures"])
-    rows = rows[(rows["status"] == "converged") & (rows["method"] == "newton")
-                & (rows["model"] == "axi")].drop_duplicates("case_id")
+    rows = pd.concat(need([t for name, t in tables.items() if len(t) and name != "figures"], "no study rows"))
+    rows = need(rows[(rows["status"] == "converged") & (rows["method"] == "newton")
+                     & (rows["model"] == "axi")].drop_duplicates("case_id"), "no converged axisymmetric Newton rows")
     h = rows["contact_scale"] / rows["n"]
     mismatch = rows["kpen"] * h**2 / (8 * rows["R"]) / rows["p0_hertz"]
     fig, ax = plt.subplots(figsize=(7.5, 5))
@@ -282,7 +310,8 @@ def zigzag(tables: dict, path: Path) -> Path:
 
 
 def seed_figure(figures: pd.DataFrame, profiles: pd.DataFrame, path: Path) -> Path:
-    cases = figures[figures["variant"] == "seed figure"].sort_values("kpen")
+    cases = need(figures[figures["variant"] == "seed figure"], "no seed-figure rows in figures").sort_values("kpen")
+    need(profiles, "no kept profile.csv of figures")
     fig, ax = plt.subplots(figsize=(8, 5))
     colors = ("#90caf9", "#42a5f5", "#1565c0", "#0d47a1")
     prof = None
@@ -303,8 +332,8 @@ def seed_figure(figures: pd.DataFrame, profiles: pd.DataFrame, path: Path) -> Pa
 
 
 def axis_stresses(figures: pd.DataFrame, axis: pd.DataFrame, path: Path) -> Path:
-    case = figures[figures["variant"] == "axis"].iloc[0]
-    data = axis[axis["case_id"] == case["case_id"]]
+    case = need(figures[figures["variant"] == "axis"], "no axis row in figures").iloc[0]
+    data = need(axis[axis["case_id"] == case["case_id"]], "no kept axis.csv for the axis case")
     p0 = data["sigma_z_hertz"].abs().max()
     fig, ax = plt.subplots(figsize=(7, 5.5))
     z = data["depth_over_a"]
@@ -328,7 +357,7 @@ def axis_stresses(figures: pd.DataFrame, axis: pd.DataFrame, path: Path) -> Path
 
 
 def domain_bias(frame: pd.DataFrame, path: Path) -> Path:
-    df = frame[frame["status"] == "converged"].sort_values("L")
+    df = need(frame[frame["status"] == "converged"], "no converged domain rows").sort_values("L")
     fig, ax = plt.subplots(figsize=(7, 5))
     ax.plot(df["L"], df["err_F"].abs() * 100, "o-", color=QUANTITY_COLORS[1], label="|F error| (measured)")
     ax.plot(df["L"], df["err_p0"].abs() * 100, "s--", color=QUANTITY_COLORS[0], label="|p0 error|")
@@ -342,7 +371,7 @@ def domain_bias(frame: pd.DataFrame, path: Path) -> Path:
 
 
 def units_check(frame: pd.DataFrame, path: Path) -> Path:
-    df = frame.copy()
+    df = need(frame, "no units rows").copy()
     df["scene"] = df["variant"].str.rsplit(", ", n=1).str[0]
     df["units"] = df["variant"].str.rsplit(", ", n=1).str[1]
     scenes = list(dict.fromkeys(df["scene"]))
@@ -385,7 +414,7 @@ def matched_accuracy(frame: pd.DataFrame) -> pd.DataFrame:
 
 def over_modelling(frame: pd.DataFrame, path: Path) -> Path:
     rows = frame[frame["status"].isin(["converged", "inaccurate"])].assign(max_err=max_error(frame))
-    spheres = rows[rows["Rx"] == rows["Ry"]]
+    spheres = need(rows[rows["Rx"] == rows["Ry"]], "no converged or inaccurate sphere rows in 3d")
     fig, axes = plt.subplots(1, 3, figsize=(16, 5))
     columns = (("wall_time", "wall time per case [s]"), ("memory_mb", "peak memory [MB]"),
                ("ndof", "degrees of freedom"))
@@ -421,6 +450,8 @@ def ellipses(frame: pd.DataFrame, outline: pd.DataFrame, profile: pd.DataFrame, 
     """Contact outlines against Hertz's ellipses, and the pressure along both axes."""
     rows = frame[(frame["model"] == "3d") & (frame["method"] == "newton") & (frame["order"] == 2)
                  & frame["status"].isin(["converged", "inaccurate"])]
+    need(rows, "no converged or inaccurate 3d newton P2 rows")
+    need(outline, "no kept outline.csv of 3d")
     finest = rows.loc[rows.groupby(["Rx", "Ry"])["n"].idxmax()].sort_values(["Ry", "Rx"])
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(13.5, 5.6))
     colors = ("#1565c0", "#c62828", "#2e7d32", "#6a1b9a", "#ef6c00")
@@ -455,7 +486,8 @@ def ellipses(frame: pd.DataFrame, outline: pd.DataFrame, profile: pd.DataFrame, 
 def calibration(frame: pd.DataFrame, path: Path) -> Path:
     """The estimate against the truth (closed forms), its effectivity, and
     -accuracy's achieved error against its target."""
-    df = frame[frame["status"].isin(["converged", "inaccurate"])].copy()
+    df = need(frame[frame["status"].isin(["converged", "inaccurate"])],
+              "no converged or inaccurate calibration rows").copy()
     df["true"] = max_error(df)
     df["est"] = df["accuracy_predicted"]
     df["group"] = df["variant"].where(~df["variant"].str.startswith("accuracy"), "-accuracy")

@@ -1,22 +1,25 @@
 """results/REPORT.md: the charts with captions and the best configurations.
 
 Reads the study tables and the environment the sweep recorded; runs nothing,
-so it works where FreeFEM is absent.
+so it works where FreeFEM is absent. A chart whose data is missing (a partial
+sweep) is skipped with a one-line note; a file that cannot be written stops
+the report with one error (ReportError).
 """
 from __future__ import annotations
 
 import datetime
 import platform
 import subprocess
+from collections.abc import Callable
 from pathlib import Path
 
 import matplotlib
 import numpy as np
 import pandas as pd
 
-from driver import ROOT, plots, table
+from driver import freefem, layout, plots, table
+from driver.errors import ReportError, TableError
 from driver.studies import STUDIES
-from driver.sweep import ENVIRONMENT_FILE, study_csv
 
 LEVELS = (0.01, 0.001)
 
@@ -24,8 +27,8 @@ LEVELS = (0.01, 0.001)
 def load_tables(results_dir: Path) -> dict[str, pd.DataFrame]:
     tables = {}
     for name in STUDIES:
-        path = study_csv(results_dir, name)
-        if path.exists():
+        path = layout.study_csv(results_dir, name)
+        if path.exists() or path.is_symlink():
             tables[name] = table.read(path)
     return tables
 
@@ -33,7 +36,10 @@ def load_tables(results_dir: Path) -> dict[str, pd.DataFrame]:
 def best_configurations(tables: dict) -> pd.DataFrame:
     """Fastest converged sphere case of the speed study (its timings are medians of
     repeated runs) whose max |error| over p0, F and a is within each level."""
-    rows = plots.sphere_cases({"speed": tables.get("speed", pd.DataFrame())})
+    try:
+        rows = plots.sphere_cases({"speed": tables.get("speed", pd.DataFrame())})
+    except (plots.NoData, KeyError):
+        return pd.DataFrame()
     best = []
     for level in LEVELS:
         within = rows[rows["max_err"] <= level]
@@ -119,7 +125,7 @@ CAPTIONS = {
 
 def _git(*args: str) -> str:
     try:
-        return subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True,
+        return subprocess.run(["git", *args], cwd=freefem.EDP_DIR, capture_output=True, text=True,
                               check=False).stdout.strip()
     except OSError:
         return ""
@@ -128,52 +134,67 @@ def _git(*args: str) -> str:
 def environment(results_dir: Path) -> list[str]:
     """Versions and dates: the sweep's machine (recorded when it ran) and this report's."""
     lines = []
-    env_path = results_dir / ENVIRONMENT_FILE
-    if env_path.exists():
-        env = pd.read_csv(env_path, dtype=str).iloc[0].to_dict()
-        lines.append("Sweep: " + ", ".join(f"{k} {v}" for k, v in env.items()) + ".")
+    env_path = results_dir / layout.ENVIRONMENT_FILE
+    try:
+        env = pd.read_csv(env_path, dtype=str, keep_default_na=False) if env_path.is_file() else pd.DataFrame()
+    except (OSError, ValueError):
+        env = pd.DataFrame()  # an unreadable record only costs the report its sweep line
+    if len(env):
+        lines.append("Sweep: " + ", ".join(f"{k} {v}" for k, v in env.astype(str).iloc[0].items()) + ".")
     lines.append(f"Report: written {datetime.datetime.now().isoformat(timespec='seconds')} at commit "
                  f"{_git('rev-parse', '--short', 'HEAD') or 'unknown'}, Python {platform.python_version()}, "
                  f"pandas {pd.__version__}, numpy {np.__version__}, matplotlib {matplotlib.__version__}.")
     return lines
 
 
-def write_report(results_dir: Path) -> Path:
-    tables = load_tables(results_dir)
-    if not tables:
-        raise FileNotFoundError(f"no study CSV in {results_dir}: run 'make sweep' or 'hertz sweep --all --quick'")
-    charts = {}
-    charts["accuracy_vs_speed"] = plots.accuracy_vs_speed(tables, results_dir / "accuracy_vs_speed.png")
-    if "kpen" in tables:
-        charts["penalty"] = plots.penalty_study(tables["kpen"], results_dir / "penalty.png")
-    if "mesh" in tables:
-        charts["mesh"] = plots.mesh_study(tables["mesh"], results_dir / "mesh.png")
-    if "stability" in tables:
-        charts["stability"] = plots.stability_map(tables["stability"], results_dir / "stability.png")
-    figures = tables.get("figures")
-    profile_path = results_dir / "figures" / "profile.csv"
-    axis_path = results_dir / "figures" / "axis.csv"
-    if figures is not None and profile_path.exists():
-        profiles = table.read(profile_path)
-        charts["pressure_profiles"] = plots.pressure_profiles(figures, profiles, results_dir / "pressure_profiles.png")
-        charts["seed_figure1"] = plots.seed_figure(figures, profiles, results_dir / "seed_figure1.png")
-    if figures is not None and axis_path.exists():
-        charts["axis_stresses"] = plots.axis_stresses(figures, table.read(axis_path), results_dir / "axis_stresses.png")
-    charts["zigzag"] = plots.zigzag(tables, results_dir / "zigzag.png")
-    if "domain" in tables:
-        charts["domain"] = plots.domain_bias(tables["domain"], results_dir / "domain.png")
-    if "units" in tables:
-        charts["units"] = plots.units_check(tables["units"], results_dir / "units.png")
+Chart = Callable[[dict[str, pd.DataFrame], Path, Path], Path]
 
-    if "calibration" in tables:
-        charts["calibration"] = plots.calibration(tables["calibration"], results_dir / "calibration.png")
-    if "3d" in tables:
-        charts["over_modelling"] = plots.over_modelling(tables["3d"], results_dir / "over_modelling.png")
-        outline, profile, profile_y = (results_dir / "3d" / f"{name}.csv"
-                                       for name in ("outline", "profile", "profile_y"))
-        if outline.exists() and profile.exists() and profile_y.exists():
-            charts["ellipses"] = plots.ellipses(tables["3d"], table.read(outline), table.read(profile),
-                                                table.read(profile_y), results_dir / "ellipses.png")
+
+def _kept(results_dir: Path, study: str, name: str) -> pd.DataFrame:
+    """A per-case file the sweep gathered (results/<study>/<name>), empty if absent."""
+    path = results_dir / study / name
+    return table.read(path) if path.exists() else pd.DataFrame()
+
+
+def _study(tables: dict[str, pd.DataFrame], name: str) -> pd.DataFrame:
+    return plots.need(tables.get(name), f"{name}.csv has no rows" if name in tables else f"no {name}.csv")
+
+
+# each chart: its name (the PNG's stem) and how to draw it from the tables and the kept files
+CHARTS: dict[str, Chart] = {
+    "accuracy_vs_speed": lambda t, r, png: plots.accuracy_vs_speed(t, png),
+    "penalty": lambda t, r, png: plots.penalty_study(_study(t, "kpen"), png),
+    "mesh": lambda t, r, png: plots.mesh_study(_study(t, "mesh"), png),
+    "stability": lambda t, r, png: plots.stability_map(_study(t, "stability"), png),
+    "pressure_profiles": lambda t, r, png: plots.pressure_profiles(_study(t, "figures"),
+                                                                   _kept(r, "figures", "profile.csv"), png),
+    "seed_figure1": lambda t, r, png: plots.seed_figure(_study(t, "figures"), _kept(r, "figures", "profile.csv"), png),
+    "axis_stresses": lambda t, r, png: plots.axis_stresses(_study(t, "figures"), _kept(r, "figures", "axis.csv"), png),
+    "zigzag": lambda t, r, png: plots.zigzag(t, png),
+    "domain": lambda t, r, png: plots.domain_bias(_study(t, "domain"), png),
+    "units": lambda t, r, png: plots.units_check(_study(t, "units"), png),
+    "calibration": lambda t, r, png: plots.calibration(_study(t, "calibration"), png),
+    "over_modelling": lambda t, r, png: plots.over_modelling(_study(t, "3d"), png),
+    "ellipses": lambda t, r, png: plots.ellipses(_study(t, "3d"), _kept(r, "3d", "outline.csv"),
+                                                 _kept(r, "3d", "profile.csv"), _kept(r, "3d", "profile_y.csv"), png),
+}
+
+
+def write_report(results_dir: Path, say: Callable[[str], None] = print) -> Path:
+    """Every chart whose data is there, and REPORT.md; say() gets a note for each skipped chart."""
+    results_dir = layout.user_path(results_dir)
+    tables = load_tables(results_dir)
+    if not any(len(t) for t in tables.values()):
+        raise ReportError(f"no study rows in {results_dir}: run 'make sweep' or 'hertz sweep --all --quick'")
+    charts = {}
+    for name, draw in CHARTS.items():
+        png = results_dir / f"{name}.png"
+        try:
+            charts[name] = draw(tables, results_dir, png)
+        except plots.NoData as why:
+            say(f"skipped {png.name}: {why}")
+        except KeyError as column:
+            say(f"skipped {png.name}: column {column} missing in its table")
 
     best = best_configurations(tables)
     counts = {name: len(t) for name, t in tables.items()}
@@ -181,11 +202,12 @@ def write_report(results_dir: Path) -> Path:
             f"Generated by `make report` from {sum(counts.values())} cases "
             f"({', '.join(f'{k}: {v}' for k, v in counts.items())}).", ""]
     text += environment(results_dir) + [""]
-    text += ["## Best configuration for each accuracy level", "",
-             "Fastest converged sphere case of the speed study whose max |error| over p0, F and a is "
-             "within the level; its wall time is the median of the repeated runs listed.", "",
-             _fmt_table(best), ""]
-    if "3d" in tables:
+    if len(best):
+        text += ["## Best configuration for each accuracy level", "",
+                 "Fastest converged sphere case of the speed study whose max |error| over p0, F and a is "
+                 "within the level; its wall time is the median of the repeated runs listed.", "",
+                 _fmt_table(best), ""]
+    if len(tables.get("3d", ())):
         text += ["## 3D cases", "",
                  "Every case of the 3d study: the sphere as axi and as 3d, and ellipsoids against elliptical "
                  "Hertz (a along x, b along y). The estimate is the solver's own (no Hertz).", "",
@@ -193,6 +215,9 @@ def write_report(results_dir: Path) -> Path:
     for name, path in charts.items():
         text += [f"## {name.replace('_', ' ').capitalize()}", "", f"![{name}]({path.name})", "",
                  CAPTIONS[name], ""]
-    report = results_dir / "REPORT.md"
-    table.write_atomically(report, "\n".join(text))
+    report = results_dir / layout.REPORT_FILE
+    try:
+        table.write_atomically(report, "\n".join(text))
+    except TableError as exc:
+        raise ReportError(str(exc)) from None
     return report

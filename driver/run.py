@@ -1,16 +1,21 @@
-"""Run one case of hertz.edp in its own directory and turn what happened into a row.
+"""Run one case of hertz.edp in its own folder and turn what happened into a row.
 
 run_case never raises: a solver that crashes, hangs, writes garbage or cannot
 start becomes a row with its status and message. The solver runs in its own
 process group with a marker in its environment; the group is killed on timeout,
 and every process that still carries the marker afterwards (a detached helper,
 or a leftover of a killed sweep, found again through the pid file) is killed
-too. The driver is a child subreaper, so orphans of a case stay within reach,
-and the solver dies with the thread that started it (setpriv --pdeathsig).
+too. A case holds a lock on its folder while it runs, so a leftover is only
+ever a dead run's, never a live one's. The solver dies with the thread that
+started it (setpriv --pdeathsig). The sweep command makes its process a
+child subreaper (become_subreaper), so that orphans of a case stay within
+reach, and then reaps the ones that exit. Importing this module changes
+nothing.
 """
 from __future__ import annotations
 
 import ctypes
+import fcntl
 import math
 import os
 import shutil
@@ -24,23 +29,79 @@ from pathlib import Path
 
 import pandas as pd
 
-from driver import freefem
+from driver import files, freefem, schema
 from driver.cases import Case
-from driver.schema import EXIT_OF_STATUS, TEXT_COLUMNS, study_columns
+from driver.errors import HertzError
 
-OUTPUT_FILES = ("summary.csv", "profile.csv", "history.csv", "axis.csv")
 MARKER = "HERTZ_CASE_TOKEN"
 PID_FILE = "freefem.pid"
+LOG_FILE = "freefem.log"
+LOCK_FILE = ".lock"
+# everything hertz.edp may write into -out (its CSV tables, and VTK files a user
+# pointed there): removed before a run, so no earlier run's file passes for this one's
+OUTPUT_SUFFIXES = (".csv", ".vtu")
+MAX_TIMEOUT = 1e6  # seconds (11.6 days); threading's timers overflow not far above 1e9
+
+_PR_SET_CHILD_SUBREAPER = 36
+_subreaper = False
 
 
-def _become_subreaper() -> None:
+REAP_EVERY = 0.5  # seconds between looks for exited orphans
+
+
+def become_subreaper() -> bool:
+    """Orphans of the cases this process runs are handed to it, not to init (Linux):
+    they stay within reach of kill_case, and a thread reaps those that exit."""
+    global _subreaper
+    if _subreaper:
+        return True
     try:
-        ctypes.CDLL(None, use_errno=True).prctl(36, 1, 0, 0, 0)  # PR_SET_CHILD_SUBREAPER
+        _subreaper = ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) == 0
     except (OSError, AttributeError):
-        pass
+        _subreaper = False
+    if _subreaper:
+        threading.Thread(target=_reap_forever, name="reaper", daemon=True).start()
+    return _subreaper
 
 
-_become_subreaper()
+def _reap_forever() -> None:
+    while True:
+        time.sleep(REAP_EVERY)
+        reap_adopted()
+
+
+def _stat(pid: str) -> tuple[str, int, int] | None:
+    """(state, parent pid, session id) of a process, from /proc."""
+    try:
+        text = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return None
+    fields = text[text.rfind(")") + 2:].split()  # the command name may hold spaces
+    return fields[0], int(fields[1]), int(fields[3])
+
+
+def reap_adopted() -> int:
+    """Reap the exited orphans this subreaper adopted. Only zombies outside this process's
+    session qualify, and not a solver run_case is waiting for: the driver's own
+    children (git, dask's processes) are waited for by their owners."""
+    if not _subreaper:
+        return 0
+    me, my_session = os.getpid(), os.getsid(0)
+    reaped = 0
+    with RUNNING.lock:  # a solver being started is registered before it can exit
+        waited = set(RUNNING.cases.values())
+        for entry in Path("/proc").iterdir():
+            if not entry.name.isdigit() or int(entry.name) in waited:
+                continue
+            stat = _stat(entry.name)
+            if stat is None or stat[0] != "Z" or stat[1] != me or stat[2] == my_session:
+                continue
+            try:
+                os.waitpid(int(entry.name), os.WNOHANG)
+                reaped += 1
+            except ChildProcessError:
+                pass
+    return reaped
 
 
 def processes_with(token: str) -> list[int]:
@@ -83,7 +144,8 @@ def kill_case(token: str, pgid: int | None = None) -> int:
 
 
 def reap_leftover(workdir: Path) -> int:
-    """A killed sweep may have left this case's solver running: kill it."""
+    """A killed sweep may have left this case's solver running: kill it. Call it only
+    while holding the folder's lock: a live run holds that lock itself."""
     pid_file = workdir / PID_FILE
     try:
         pgid_text, token = pid_file.read_text().split()
@@ -98,25 +160,55 @@ class Running:
     """The solver processes running now, so that a signal can stop them all."""
 
     def __init__(self) -> None:
-        self._lock = threading.Lock()
-        self._cases: dict[str, int] = {}
-
-    def add(self, token: str, pgid: int) -> None:
-        with self._lock:
-            self._cases[token] = pgid
+        self.lock = threading.Lock()
+        self.cases: dict[str, int] = {}
 
     def discard(self, token: str) -> None:
-        with self._lock:
-            self._cases.pop(token, None)
+        with self.lock:
+            self.cases.pop(token, None)
 
     def kill_all(self) -> None:
-        with self._lock:
-            cases = list(self._cases.items())
+        with self.lock:
+            cases = list(self.cases.items())
         for token, pgid in cases:
             kill_case(token, pgid)
 
 
 RUNNING = Running()
+
+
+class Busy(HertzError):
+    """Another run holds this case folder."""
+
+
+class CaseLock:
+    """Exclusive and non-blocking, on <workdir>/.lock: one run per case folder at a time.
+    The kernel drops it when its process dies, so a held lock means a live run."""
+
+    def __init__(self, workdir: Path):
+        self.workdir = workdir
+        self.fd: int | None = None
+
+    def __enter__(self) -> CaseLock:
+        files.refuse_symlink(self.workdir, "work folder")
+        self.workdir.mkdir(parents=True, exist_ok=True)
+        files.refuse_symlink(self.workdir, "work folder")
+        path = self.workdir / LOCK_FILE
+        try:
+            fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o644)
+        except OSError as exc:
+            raise HertzError(f"cannot lock {self.workdir}: {exc.strerror}") from None
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            os.close(fd)
+            raise Busy(f"another run is using {self.workdir}") from None
+        self.fd = fd
+        return self
+
+    def __exit__(self, *exc) -> None:
+        assert self.fd is not None
+        os.close(self.fd)
 
 
 def _launcher() -> list[str]:
@@ -125,7 +217,7 @@ def _launcher() -> list[str]:
     return [setpriv, "--pdeathsig", "KILL", "--"] if setpriv else []
 
 
-def _empty_row(case: Case, study: str, columns: list[str]) -> dict:
+def empty_row(case: Case, study: str, columns: list[str]) -> dict:
     row: dict = {col: math.nan for col in columns}
     row.update(case.params)
     row.update(study=study, case_id=case.case_id, variant=case.variant,
@@ -137,8 +229,9 @@ def read_summary(path: Path, summary_columns: list[str]) -> tuple[dict | None, s
     """The one row of summary.csv, or None and why it is unusable."""
     if not path.is_file():
         return None, "no summary.csv" if not path.exists() else "summary.csv is not a file"
+    text = schema.text_columns()
     try:
-        frame = pd.read_csv(path, dtype={c: str for c in TEXT_COLUMNS})
+        frame = pd.read_csv(path, dtype={c: str for c in text})
     except (ValueError, UnicodeDecodeError, OSError) as exc:
         return None, f"summary.csv unreadable: {exc}".splitlines()[0][:200]
     if len(frame) != 1:
@@ -149,7 +242,7 @@ def read_summary(path: Path, summary_columns: list[str]) -> tuple[dict | None, s
         return None, f"summary.csv columns differ from hertz.edp's (unknown {unknown}, missing {missing})"
     row = frame.iloc[0].to_dict()
     for col in summary_columns:
-        if col in TEXT_COLUMNS:
+        if col in text:
             continue
         value = row[col]
         if isinstance(value, str):
@@ -164,19 +257,19 @@ def _status(exit_code: int, summary: dict | None, why: str) -> tuple[str, str]:
     if summary is None:
         return "failed", why or f"exit code {exit_code} without summary.csv"
     status = str(summary.get("status"))
-    if status not in EXIT_OF_STATUS:
+    table = freefem.exits()
+    if status not in table:
         return "failed", f"unknown status {status!r} in summary.csv (exit code {exit_code})"
-    if EXIT_OF_STATUS[status] != exit_code:
+    if table[status].code != exit_code:
         return "failed", f"summary.csv says {status} but hertz.edp exited with {exit_code}"
-    if status in ("converged", "inaccurate"):
-        values = [summary.get(k) for k in ("p0_fe", "F_fe", "a_fe")]
-        if any(not isinstance(v, (int, float)) or not math.isfinite(v) for v in values):
+    if status in schema.ANSWERED:
+        if not schema.answered(summary):
             return "nan", f"{status} but p0, F or a is not finite"
         return status, ""
     return status, f"{status} after {summary.get('iterations')} iterations, residual {summary.get('residual')}"
 
 
-def _solver_error(log: Path) -> str:
+def solver_error(log: Path) -> str:
     """The solver's own error line (hertz.edp's, or FreeFEM's), if it printed one."""
     try:
         lines = [ln.strip() for ln in log.read_text(errors="replace").splitlines() if ln.strip()]
@@ -200,28 +293,42 @@ def _last_output(log: Path) -> str:
 
 
 def run_case(case: Case, workdir: Path, timeout: float, study: str = "",
-             summary_columns: list[str] | None = None, jobs: int = 1, repeats: int = 1) -> dict:
+             summary_columns: list[str] | None = None, jobs: int = 1, repeats: int = 1,
+             extra: tuple[str, ...] = (), lock: bool = True) -> dict:
     """Run hertz.edp for one case; always return a full row, whatever happened.
     With repeats > 1 the case runs that many times (the rest of the row is the
-    last run's) and wall_time is the median of their times, listed in timings."""
+    last run's) and wall_time is the median of their times, listed in timings.
+    extra: options that are not part of the case (-vtk PATH). lock=False: the
+    caller holds the folder's CaseLock already."""
     start = time.perf_counter()
+    workdir = workdir.absolute()  # the solver runs inside it: a relative -out would point elsewhere
     try:
         columns = summary_columns or freefem.summary_columns()
     except Exception as exc:  # noqa: BLE001 - a row is the answer to anything
-        columns = []
-        row = _empty_row(case, study, study_columns(columns))
+        row = empty_row(case, study, schema.study_columns([]))
         row.update(status="failed", error=f"cannot read hertz.edp's columns: {exc}"[:300])
         return row
-    row = _empty_row(case, study, study_columns(columns))
+    row = empty_row(case, study, schema.study_columns(columns))
     row["jobs"] = jobs
     times = []
     try:
-        for _ in range(repeats):
-            t0 = time.perf_counter()
-            row.update(_run(case, workdir, timeout, columns))
-            times.append(time.perf_counter() - t0)
-            if row["status"] in ("timeout", "failed"):
-                break
+        if not 0 < timeout <= MAX_TIMEOUT:
+            raise HertzError(f"timeout must be in (0, {MAX_TIMEOUT:g}] seconds, got {timeout!r}")
+        held = CaseLock(workdir) if lock else None
+        if held is not None:
+            held.__enter__()
+        try:
+            for _ in range(repeats):
+                t0 = time.perf_counter()
+                row.update(_run(case, workdir, timeout, columns, extra))
+                times.append(time.perf_counter() - t0)
+                if row["status"] in ("timeout", "failed"):
+                    break
+        finally:
+            if held is not None:
+                held.__exit__()
+    except HertzError as exc:
+        row.update(status="failed", error=str(exc)[:300])
     except Exception as exc:  # noqa: BLE001 - a row is the answer to anything
         row.update(status="failed", error=f"driver error: {exc!r}"[:300])
     row["wall_time"] = statistics.median(times) if times else time.perf_counter() - start
@@ -231,25 +338,32 @@ def run_case(case: Case, workdir: Path, timeout: float, study: str = "",
     return row
 
 
-def _run(case: Case, workdir: Path, timeout: float, columns: list[str]) -> dict:
-    workdir.mkdir(parents=True, exist_ok=True)
+def clear_outputs(workdir: Path) -> None:
+    """Remove what an earlier run left: a file from it must not pass for this run's."""
+    for path in workdir.iterdir():
+        if path.suffix in OUTPUT_SUFFIXES or path.name in (LOG_FILE, PID_FILE):
+            if path.is_file() or path.is_symlink():
+                path.unlink()
+
+
+def _run(case: Case, workdir: Path, timeout: float, columns: list[str], extra: tuple[str, ...]) -> dict:
     reap_leftover(workdir)
-    for name in OUTPUT_FILES:
-        (workdir / name).unlink(missing_ok=True)
-    cmd = _launcher() + freefem.command(case.args() + ["-out", str(workdir)])
+    clear_outputs(workdir)
+    cmd = _launcher() + freefem.command(case.args() + list(extra) + ["-out", str(workdir)])
     token = uuid.uuid4().hex
     env = freefem.freefem_env() | {MARKER: token}
-    log_path = workdir / "freefem.log"
+    log_path = workdir / LOG_FILE
     timed_out = threading.Event()
     with open(log_path, "wb") as log:
         log.write((" ".join(cmd) + "\n").encode())
         log.flush()
-        # output to a file, not a pipe: a helper that keeps the pipe open would
-        # hold a finished case until its timeout
-        proc = subprocess.Popen(cmd, cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
-                                env=env, start_new_session=True)
+        with RUNNING.lock:  # registered before it can exit: reap_adopted leaves it to us
+            # output to a file, not a pipe: a helper that keeps the pipe open would
+            # hold a finished case until its timeout
+            proc = subprocess.Popen(cmd, cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
+                                    env=env, start_new_session=True)
+            RUNNING.cases[token] = proc.pid
     (workdir / PID_FILE).write_text(f"{proc.pid} {token}\n")
-    RUNNING.add(token, proc.pid)
 
     def expire() -> None:
         timed_out.set()
@@ -266,6 +380,7 @@ def _run(case: Case, workdir: Path, timeout: float, columns: list[str]) -> dict:
         kill_case(token, proc.pid)  # helpers left in its group or detached
         RUNNING.discard(token)
         (workdir / PID_FILE).unlink(missing_ok=True)
+        reap_adopted()
     out: dict[str, object] = {"exit_code": proc.returncode, "max_rss_mb": usage.ru_maxrss / 1024}
     if timed_out.is_set():
         out.update(status="timeout", error=f"no result after {timeout:g} s")
@@ -275,8 +390,14 @@ def _run(case: Case, workdir: Path, timeout: float, columns: list[str]) -> dict:
     if summary is not None:
         out.update(summary)
     if status == "failed":
-        error = _solver_error(log_path) or error
+        error = solver_error(log_path) or error
         if summary is None and not error.startswith("hertz.edp"):
             error = f"{error}; last output: {_last_output(log_path)}"
     out.update(status=status, error=error)
     return out
+
+
+def rejected(row: dict) -> bool:
+    """hertz.edp refused the case's input (its one error line is the row's error)."""
+    return (row.get("status") == "failed" and row.get("exit_code") == freefem.exit_code("rejected")
+            and str(row.get("error", "")).startswith("hertz.edp: error:"))

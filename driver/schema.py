@@ -1,27 +1,78 @@
-"""Columns and statuses the driver adds to hertz.edp's own (freefem.summary_columns).
+"""Columns and statuses the driver adds to hertz.edp's own.
 
-A study CSV is  LEADING + summary.csv's columns + TRAILING.
+A study CSV is  LEADING + summary.csv's columns (freefem.summary_columns) + TRAILING.
+hertz.edp's statuses and exit codes come from its -exits table (freefem.exits);
+the driver adds three statuses of its own for runs that gave no answer.
 """
 from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+from driver import freefem
 
 LEADING = ["study", "case_id", "variant", "expect_converged"]
 TRAILING = ["edp_hash", "wall_time", "timings", "max_rss_mb", "jobs", "exit_code", "error"]
 
 # read as text whatever they look like (an edp_hash such as 05426170e796 is not a number)
-TEXT_COLUMNS = ["study", "case_id", "variant", "edp_hash", "error", "model", "method", "start", "farfield", "formulation",
-                "status", "warnings", "timings"]
+DRIVER_TEXT = ["study", "case_id", "variant", "edp_hash", "error", "timings"]
+# hertz.edp's outputs that are words; its word and path options are text too (text_columns)
+OUTPUT_TEXT = ["status", "warnings"]
 
-# statuses: hertz.edp's (README), then the driver's own
-SOLVER_STATUSES = ["converged", "inaccurate", "roundoff", "stalled", "diverged", "maxiter"]
+# a run that gave an answer: its p0, F and a must be finite numbers
+ANSWERED = ("converged", "inaccurate")
+ANSWER_COLUMNS = ("p0_fe", "F_fe", "a_fe")
+
 DRIVER_STATUSES = ["nan", "timeout", "failed"]
-STATUSES = SOLVER_STATUSES + DRIVER_STATUSES
 # worth running again with more time or after a fix elsewhere (--retry-failed)
 RETRY_STATUSES = ["failed", "timeout"]
-
-# hertz.edp's exit code for each of its statuses
-EXIT_OF_STATUS = {"converged": 0, "inaccurate": 5, "roundoff": 3, "stalled": 3, "diverged": 3,
-                  "maxiter": 3}
+# a driver status exits like the solver status it stands for (hertz run)
+DRIVER_EXITS_LIKE = {"nan": "diverged", "timeout": "maxiter"}
+EXIT_FAILED = 1  # the driver could not get an answer, and no solver code says why
 
 
 def study_columns(summary: list[str]) -> list[str]:
     return LEADING + list(summary) + TRAILING
+
+
+def text_columns() -> set[str]:
+    """Columns that hold words: the driver's, hertz.edp's word outputs, and every word
+    or path option (a new one is text without a change here)."""
+    words = {name for name, o in freefem.options().items() if o.kind in ("word", "path")}
+    return set(DRIVER_TEXT) | set(OUTPUT_TEXT) | words
+
+
+def statuses() -> list[str]:
+    """Every status a row may carry: hertz.edp's (its -exits table), then the driver's."""
+    return list(freefem.exits()) + DRIVER_STATUSES
+
+
+def answered(row: Mapping) -> bool:
+    """A converged or inaccurate row with finite p0, F and a."""
+    if row.get("status") not in ANSWERED:
+        return False
+    for column in ANSWER_COLUMNS:
+        value = row.get(column)
+        if isinstance(value, str):
+            try:
+                value = float(value)
+            except ValueError:
+                return False
+        if not isinstance(value, (int, float)) or not math.isfinite(value):
+            return False
+    return True
+
+
+def exit_code_of(row: Mapping) -> int:
+    """The exit code `hertz run` gives for a row: hertz.edp's code for its status, the
+    solver's own code when the driver could not read an answer, else EXIT_FAILED."""
+    table = freefem.exits()
+    status = str(row.get("status"))
+    status = DRIVER_EXITS_LIKE.get(status, status)
+    if status in table:
+        return table[status].code
+    code = row.get("exit_code")
+    known = {e.code for name, e in table.items() if name not in ANSWERED and e.code != 0}
+    if isinstance(code, (int, float)) and not isinstance(code, bool) and code == code and int(code) in known:
+        return int(code)
+    return EXIT_FAILED

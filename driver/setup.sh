@@ -39,7 +39,7 @@ if [ -w "$pref" ] || [ "$(id -u)" = 0 ]; then
 fi
 
 py="${PYTHON:-python3}"
-if ! "$py" -c "import driver, pytest, hypothesis, meshio, distributed, pyvista, ruff, mypy" 2>/dev/null || ! command -v hertz >/dev/null; then
+if ! "$py" -c "import driver, pytest, hypothesis, meshio, distributed, pyvista, scipy, ruff, mypy" 2>/dev/null || ! command -v hertz >/dev/null; then
   echo "setup: installing the Python package and its test tools"
   # Debian's own Python refuses pip installs into the system (PEP 668)
   "$py" -m pip install -q -e "$root[test,lint]" 2>/dev/null \

@@ -14,12 +14,13 @@ import json
 import math
 import tomllib
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from driver import freefem
 from driver.cases import Case, Value
-from driver.table import TableError, check_name
+from driver.errors import OptionError, SpecError, TableError
+from driver.table import check_name
 
 DECADES = [10.0**k for k in range(1, 10)]            # absolute kpen on the seed scene
 GAMMAS = [10.0**k for k in range(-2, 7)]             # kpen in units of E*/h
@@ -253,19 +254,41 @@ STUDIES = {s.name: s for s in [
 ]}
 
 
-class SpecError(ValueError):
-    """A study spec file that cannot define cases."""
+@dataclass(frozen=True)
+class Spec:
+    """A grid from a spec file: every combination of the grid's values on top of base.
+    Its size is known before any case is built (a product of axes grows fast)."""
+
+    name: str
+    base: dict[str, Value] = field(default_factory=dict)
+    axes: dict[str, list[Value]] = field(default_factory=dict)
+
+    @property
+    def count(self) -> int:
+        return math.prod(len(values) for values in self.axes.values())
+
+    def cases(self) -> list[Case]:
+        return labelled(grid(Case().with_(**self.base), **self.axes), lambda c: self.name)
 
 
-SPEC_FORBIDDEN = {"out", "vtk", "check"}  # the driver owns where files go
+def _unique_keys(pairs: list[tuple[str, object]]) -> dict:
+    """A JSON object whose keys are all different (json keeps the last of a repeated key)."""
+    seen: dict = {}
+    for key, value in pairs:
+        if key in seen:
+            raise ValueError(f"key {key!r} is given twice")
+        seen[key] = value
+    return seen
 
 
-def load_spec(path: Path) -> tuple[str, list[Case]]:
-    """A grid from TOML or JSON: name = "...", [base] fixed values, [grid] lists of values."""
+def load_spec(path: Path) -> Spec:
+    """A grid from TOML or JSON: name = "...", [base] fixed values, [grid] lists of values.
+    Every key is an option of hertz.edp's table, checked against its kind and range."""
     try:
         text = path.read_text()
-        data = json.loads(text) if path.suffix == ".json" else tomllib.loads(text)
-    except (OSError, ValueError) as exc:
+        data = (json.loads(text, object_pairs_hook=_unique_keys) if path.suffix == ".json"
+                else tomllib.loads(text))  # TOML itself refuses a repeated key
+    except (OSError, ValueError, RecursionError) as exc:
         raise SpecError(f"spec {path}: cannot read: {exc}") from None
     if not isinstance(data, dict):
         raise SpecError(f"spec {path}: the top level must be a table (name, base, grid)")
@@ -281,17 +304,16 @@ def load_spec(path: Path) -> tuple[str, list[Case]]:
         raise SpecError(f"spec {path}: {exc}") from None
     if name in STUDIES:
         raise SpecError(f"spec {path}: name '{name}' is a built-in study; choose another")
-    table = freefem.options()
-    base = {k: _value(path, table, k, v) for k, v in _table(path, data, "base").items()}
+    options = freefem.case_options()
+    base = {k: _value(path, options, k, v) for k, v in _table(path, data, "base").items()}
     axes = {}
     for key, values in _table(path, data, "grid").items():
         if not isinstance(values, list) or not values:
             raise SpecError(f"spec {path}: grid.{key} must be a non-empty list")
-        axes[key] = [_value(path, table, key, v) for v in values]
+        axes[key] = [_value(path, options, key, v) for v in values]
     if not axes:
         raise SpecError(f"spec {path}: [grid] must list at least one parameter")
-    count = math.prod(len(v) for v in axes.values())
-    return name, labelled(grid(Case().with_(**base), **axes), lambda c: name) if count else []
+    return Spec(name, base, axes)
 
 
 def _table(path: Path, data: dict, key: str) -> dict:
@@ -301,21 +323,10 @@ def _table(path: Path, data: dict, key: str) -> dict:
     return table
 
 
-def _value(path: Path, table: dict[str, freefem.Option], key: str, value) -> Value:
-    if key not in table or key in SPEC_FORBIDDEN:
-        known = ", ".join(k for k in table if k not in SPEC_FORBIDDEN)
-        raise SpecError(f"spec {path}: unknown parameter '{key}'; known: {known}")
-    option = table[key]
-    if option.kind == "word":
-        if not isinstance(value, str) or value not in (option.choices or []):
-            raise SpecError(f"spec {path}: {key} must be one of {option.range}, got {value!r}")
-        return value
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise SpecError(f"spec {path}: {key} must be a number, got {value!r}")
-    if not math.isfinite(value):
-        raise SpecError(f"spec {path}: {key} must be finite, got {value!r}")
-    if option.kind == "int":
-        if not float(value).is_integer():
-            raise SpecError(f"spec {path}: {key} must be an integer, got {value!r}")
-        return int(value)
-    return float(value)
+def _value(path: Path, options: dict[str, freefem.Option], key: str, value) -> Value:
+    if key not in options:
+        raise SpecError(f"spec {path}: unknown parameter '{key}'; known: {', '.join(options)}")
+    try:
+        return options[key].parse(value, key)
+    except OptionError as exc:
+        raise SpecError(f"spec {path}: {exc}") from None

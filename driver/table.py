@@ -1,10 +1,13 @@
 """A study table (results/<study>.csv): validated on load, appended row by row, rewritten atomically.
 
 While a sweep runs the table is append-only: each finished case is one line,
-flushed and fsynced, so a kill loses no finished case. Anything that changes
-lines already written (dropping a line cut by a kill, moving stale or bad rows
-aside) writes a new file and renames it over the old one, so a kill during the
-repair leaves either the old table or the new one, never a cut one.
+flushed and fsynced, so a kill loses no finished case. A rerun of a case
+(--force, --retry-failed) is appended too, and replaces the earlier row of its
+case only when the table is next prepared: until its rerun lands, the old row
+stays. Anything that changes lines already written (dropping a line cut by a
+kill, moving stale, bad or replaced rows aside into stale/) writes a new file
+and renames it over the old one, so a kill during the repair leaves either the
+old table or the new one, never a cut one.
 """
 from __future__ import annotations
 
@@ -21,20 +24,20 @@ from typing import IO
 
 import pandas as pd
 
-from driver.schema import STATUSES, TEXT_COLUMNS
+from driver import files, layout, schema
+from driver.errors import TableError
 
 NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_-]{0,63}$")
-RESERVED = {"runs", "stale", "local", "REPORT", "bench"}
-
-
-class TableError(RuntimeError):
-    """A study table that cannot be read or written; the message says which and why."""
 
 
 def check_name(name: str) -> None:
-    if not NAME.match(name) or name in RESERVED:
+    if not NAME.match(name) or name in layout.RESERVED_NAMES:
         raise TableError(f"study name {name!r} must be 1 to 64 letters, digits, - or _ "
-                         f"(starting with a letter or digit) and not one of {sorted(RESERVED)}")
+                         f"(starting with a letter or digit) and not one of {sorted(layout.RESERVED_NAMES)}")
+
+
+def refuse_symlink(path: Path, what: str = "table") -> None:
+    files.refuse_symlink(path, what, TableError)
 
 
 class StudyLock:
@@ -46,9 +49,12 @@ class StudyLock:
 
     def __enter__(self) -> StudyLock:
         try:
-            handle = open(self.path, "a+")
+            # O_NOFOLLOW: a planted link is refused, not followed
+            fd = os.open(self.path, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o644)
         except OSError as exc:
-            raise TableError(f"cannot create the lock {self.path}: {exc.strerror}") from None
+            raise TableError(f"cannot create the lock {self.path}: {exc.strerror}"
+                             + (" (a symbolic link?)" if self.path.is_symlink() else "")) from None
+        handle = os.fdopen(fd, "a+")
         try:
             fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
@@ -65,21 +71,7 @@ class StudyLock:
 
 
 def write_atomically(path: Path, text: str) -> None:
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.part")
-    try:
-        with open(tmp, "w", encoding="utf-8") as f:
-            f.write(text)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-        fd = os.open(path.parent, os.O_RDONLY)
-        try:
-            os.fsync(fd)
-        finally:
-            os.close(fd)
-    except OSError as exc:
-        tmp.unlink(missing_ok=True)
-        raise TableError(f"cannot write {path}: {exc.strerror}") from None
+    files.write_text_atomically(path, text, TableError)
 
 
 def _csv_text(columns: list[str], rows: list[list[str]]) -> str:
@@ -97,6 +89,7 @@ class Checked:
     columns: list[str]
     rows: list[list[str]] = field(default_factory=list)
     bad: list[tuple[int, str, str]] = field(default_factory=list)  # line number, reason, line
+    replaced: list[list[str]] = field(default_factory=list)  # earlier rows of a case run again
     cut_last_line: bool = False
 
 
@@ -110,9 +103,42 @@ def _numeric_ok(text: str) -> bool:
     return True
 
 
+def _raw(path: Path) -> bytes:
+    refuse_symlink(path)
+    if path.exists() and not path.is_file():
+        raise TableError(f"the table {path} is not a file")
+    try:
+        return path.read_bytes() if path.exists() else b""
+    except OSError as exc:
+        raise TableError(f"cannot read {path}: {exc.strerror}") from None
+
+
+def _row_problem(fields: list[str], columns: list[str], index: dict[str, int], statuses: list[str],
+                 text: set[str]) -> str:
+    """Why a line is not a valid row ("" if it is one)."""
+    if len(fields) != len(columns):
+        return f"{len(fields)} fields, not {len(columns)}"
+    if not fields[index["case_id"]]:
+        return "empty case_id"
+    status = fields[index["status"]]
+    if status not in statuses:
+        return f"status {status!r} is not one of {statuses}"
+    for col, value in zip(columns, fields):
+        if col not in text and col != "expect_converged" and not _numeric_ok(value):
+            return f"{col} is not a number: {value!r}"
+    if status in schema.ANSWERED:
+        # a hand-edited row must not pass for a finished case without its answer
+        for col in schema.ANSWER_COLUMNS:
+            value = fields[index[col]]
+            if value == "" or not math.isfinite(float(value)):
+                return f"{status} without a finite {col}"
+    return ""
+
+
 def check(path: Path, columns: list[str]) -> Checked:
-    """Read a table line by line; every line that is not a valid row is reported, not kept."""
-    raw = path.read_bytes() if path.exists() else b""
+    """Read a table line by line; every line that is not a valid row is reported, not kept.
+    A case found twice keeps its later row; the earlier one is `replaced`."""
+    raw = _raw(path)
     result = Checked(columns)
     if not raw:
         return result
@@ -129,7 +155,10 @@ def check(path: Path, columns: list[str]) -> Checked:
                        for k, ln in enumerate(lines[1:], start=1)]
         return result
     index = {c: k for k, c in enumerate(columns)}
+    statuses = schema.statuses()
+    text_cols = schema.text_columns()
     seen: dict[str, int] = {}
+    rows: list[list[str] | None] = []
     for number, line in enumerate(lines[1:], start=2):
         try:
             text = line.decode("utf-8")
@@ -141,38 +170,25 @@ def check(path: Path, columns: list[str]) -> Checked:
         except (csv.Error, StopIteration):
             result.bad.append((number, "not a CSV line", text))
             continue
-        reason = ""
-        if len(fields) != len(columns):
-            reason = f"{len(fields)} fields, not {len(columns)}"
-        elif not fields[index["case_id"]]:
-            reason = "empty case_id"
-        elif fields[index["status"]] not in STATUSES:
-            reason = f"status {fields[index['status']]!r} is not one of {STATUSES}"
-        else:
-            for col, value in zip(columns, fields):
-                if col not in TEXT_COLUMNS and col != "expect_converged" and not _numeric_ok(value):
-                    reason = f"{col} is not a number: {value!r}"
-                    break
+        reason = _row_problem(fields, columns, index, statuses, text_cols)
         if reason:
             result.bad.append((number, reason, text))
             continue
         case_id = fields[index["case_id"]]
-        if case_id in seen:  # the later run of a case replaces the earlier one
-            earlier = seen[case_id]
-            result.bad.append((earlier + 2, f"duplicate of case {case_id} (line {number} kept)",
-                               _csv_text(columns, [result.rows[earlier]]).split("\n")[1]))
-            result.rows[earlier] = []
-        seen[case_id] = len(result.rows)
-        result.rows.append(fields)
-    result.rows = [r for r in result.rows if r]
+        if case_id in seen:  # a rerun of the case: the later row replaces the earlier one
+            earlier = rows[seen[case_id]]
+            assert earlier is not None
+            result.replaced.append(earlier)
+            rows[seen[case_id]] = None
+        seen[case_id] = len(rows)
+        rows.append(fields)
+    result.rows = [r for r in rows if r is not None]
     return result
 
 
-def frame_of(columns: list[str], rows: list[list[str]]) -> pd.DataFrame:
-    """Rows of text fields as a typed frame: numbers as floats, ids and words as text."""
-    frame = pd.DataFrame(rows, columns=columns, dtype=object)
-    for col in columns:
-        if col in TEXT_COLUMNS:
+def _typed(frame: pd.DataFrame, text: set[str]) -> pd.DataFrame:
+    for col in frame.columns:
+        if col in text:
             frame[col] = frame[col].fillna("").astype(str)
         elif col == "expect_converged":
             frame[col] = frame[col].map({"True": True, "False": False, "": True})
@@ -181,72 +197,97 @@ def frame_of(columns: list[str], rows: list[list[str]]) -> pd.DataFrame:
     return frame
 
 
+def frame_of(columns: list[str], rows: list[list[str]]) -> pd.DataFrame:
+    """Rows of text fields as a typed frame: numbers as floats, ids and words as text."""
+    return _typed(pd.DataFrame(rows, columns=columns, dtype=object), schema.text_columns())
+
+
 def read(path: Path | str) -> pd.DataFrame:
-    """A table for reading (charts, report, tests): its own header, ids as text."""
+    """A table for reading (charts, report, tests), without asking hertz.edp anything:
+    the driver's text columns stay text, every other column that holds only numbers
+    becomes numbers, the rest (words) stays text."""
     path = Path(path)
+    refuse_symlink(path)
     if not path.exists() or path.stat().st_size == 0:
         return pd.DataFrame()
-    header = next(csv.reader([path.open(encoding="utf-8", errors="replace").readline()]))
-    return pd.read_csv(path, dtype={c: str for c in TEXT_COLUMNS if c in header},
-                       keep_default_na=False, na_values=[""])
+    if not path.is_file():
+        raise TableError(f"the table {path} is not a file")
+    try:
+        frame = pd.read_csv(path, dtype=str, keep_default_na=False)
+    except (OSError, ValueError, UnicodeDecodeError) as exc:
+        raise TableError(f"cannot read {path}: {str(exc).splitlines()[0][:200]}") from None
+    text = set(schema.DRIVER_TEXT)
+    for col in frame.columns:
+        if col in text or col == "expect_converged":
+            continue
+        numbers = pd.to_numeric(frame[col].replace("", math.nan), errors="coerce")
+        if numbers.notna().sum() != (frame[col] != "").sum():
+            text.add(col)  # words
+    return _typed(frame, text)
 
 
 def prepare(path: Path, columns: list[str], current_hash: str) -> tuple[pd.DataFrame, list[str]]:
     """Keep the rows of the current solver code; move the others aside, with a message each.
 
-    Returns the kept table and the messages (bad lines by number, stale rows)."""
+    Returns the kept table and the messages (bad lines by number, stale and replaced rows)."""
     checked = check(path, columns)
     messages = []
-    stale_dir = path.parent / "stale"
+    stale_dir = path.parent / layout.STALE
     stamp = time.strftime("%Y%m%d-%H%M%S")
+
+    def aside(name: str, text: str) -> Path:
+        refuse_symlink(stale_dir, "folder")
+        stale_dir.mkdir(exist_ok=True)
+        target = stale_dir / name
+        refuse_symlink(target)
+        write_atomically(target, text)
+        return target
+
     if checked.cut_last_line:
         messages.append(f"{path.name}: dropped a last line cut by an interrupted write")
     if checked.bad:
-        text = "\n".join(f"line {n}: {reason}: {line}" for n, reason, line in checked.bad) + "\n"
-        stale_dir.mkdir(exist_ok=True)
-        aside = stale_dir / f"{path.stem}-bad-{stamp}.txt"
-        write_atomically(aside, text)
+        target = aside(f"{path.stem}-bad-{stamp}.txt",
+                       "\n".join(f"line {n}: {reason}: {line}" for n, reason, line in checked.bad) + "\n")
         for n, reason, _ in checked.bad[:5]:
             messages.append(f"{path.name}: line {n}: {reason}")
         if len(checked.bad) > 5:
             messages.append(f"{path.name}: ... {len(checked.bad) - 5} more")
-        messages.append(f"{path.name}: {len(checked.bad)} bad line(s) moved to {aside}")
+        messages.append(f"{path.name}: {len(checked.bad)} bad line(s) moved to {target}")
+    if checked.replaced:
+        target = stale_dir / f"{path.stem}-replaced-{stamp}.csv"
+        old = check(target, columns).rows if target.exists() else []
+        aside(target.name, _csv_text(columns, old + checked.replaced))
+        messages.append(f"{path.name}: {len(checked.replaced)} row(s) replaced by a rerun of their case "
+                        f"moved to {target}")
     hash_col = columns.index("edp_hash")
     stale = [r for r in checked.rows if r[hash_col] != current_hash]
     kept = [r for r in checked.rows if r[hash_col] == current_hash]
     if stale:
-        stale_dir.mkdir(exist_ok=True)
         by_hash: dict[str, list[list[str]]] = {}
         for r in stale:
             by_hash.setdefault(r[hash_col], []).append(r)
         for h, rows in by_hash.items():
             target = stale_dir / f"{path.stem}-{h}.csv"
             old = check(target, columns).rows if target.exists() else []
-            write_atomically(target, _csv_text(columns, old + rows))
+            aside(target.name, _csv_text(columns, old + rows))
         messages.append(f"{path.name}: {len(stale)} row(s) of other solver code moved to {stale_dir}/")
-    if checked.cut_last_line or checked.bad or stale:
+    if checked.cut_last_line or checked.bad or checked.replaced or stale:
         write_atomically(path, _csv_text(columns, kept))
     return frame_of(columns, kept), messages
-
-
-def remove_cases(path: Path, columns: list[str], case_ids: set[str]) -> None:
-    """Drop these cases' rows (to run them again), atomically."""
-    checked = check(path, columns)
-    index = columns.index("case_id")
-    write_atomically(path, _csv_text(columns, [r for r in checked.rows if r[index] not in case_ids]))
 
 
 def append_row(path: Path, row: dict, columns: list[str]) -> None:
     """One finished case, flushed and fsynced; raises TableError if the disk refuses."""
     buf = io.StringIO()
     writer = csv.DictWriter(buf, fieldnames=columns, lineterminator="\n", extrasaction="ignore")
+    refuse_symlink(path)
     new = not path.exists() or path.stat().st_size == 0
     if new:
         writer.writeheader()
     writer.writerow({k: _cell(row.get(k)) for k in columns})
     data = buf.getvalue().encode("utf-8")
     try:
-        fd = os.open(path, os.O_WRONLY | os.O_APPEND | os.O_CREAT, 0o644)
+        fd = os.open(path, os.O_WRONLY | os.O_APPEND | os.O_CREAT | os.O_NOFOLLOW, 0o644)
         try:
             written = os.write(fd, data)
             if written != len(data):

@@ -19,7 +19,45 @@ def run_real() -> int:
     return subprocess.run([real, *args]).returncode
 
 
-if "-options" in args or "-columns" in args or not mode:
+if mode == "exits_shifted":
+    # hertz.edp with every exit code moved by 10: the driver must follow its -exits table
+    if "-exits" in args:
+        out = subprocess.run([real, *args], capture_output=True, text=True).stdout
+        for line in out.splitlines():
+            fields = line.split(",", 2)
+            if len(fields) == 3 and fields[1].isdigit():
+                line = ",".join([fields[0], str(int(fields[1]) + 10), fields[2]])
+            print(line)
+        sys.exit(0)
+    code = run_real()
+    sys.exit(code + 10 if any(flag in args for flag in ("-options", "-columns")) is False else code)
+
+if mode == "grown":
+    # a later hertz.edp with one more word option (-shape) and two more summary columns
+    if "-options" in args or "-columns" in args:
+        out = subprocess.run([real, *args], capture_output=True, text=True).stdout
+        for line in out.splitlines():
+            if line.startswith("-check,"):
+                print('-shape,word,"sphere","sphere, flat","indenter shape"')
+            print(line + (",shape,S_fe" if line.startswith("model,") else ""))
+        sys.exit(0)
+    if "-exits" in args:
+        sys.exit(run_real())
+    shape = "sphere"
+    if "-shape" in args:
+        k = args.index("-shape")
+        shape = args[k + 1]
+        del args[k:k + 2]
+    code = run_real()
+    out = args[args.index("-out") + 1]
+    summary = os.path.join(out, "summary.csv")
+    with open(summary) as f:
+        head, row = f.read().splitlines()[:2]
+    with open(summary, "w") as f:
+        f.write(f"{head},shape,S_fe\n{row},{shape},1.5\n")
+    sys.exit(code)
+
+if any(flag in args for flag in ("-options", "-columns", "-exits")) or not mode:
     sys.exit(run_real())
 
 out = args[args.index("-out") + 1] if "-out" in args else "."
@@ -44,6 +82,16 @@ elif mode == "detached_child":
     sys.exit(run_real())
 elif mode == "hang":
     time.sleep(600)
+elif mode == "slow":
+    time.sleep(float(os.environ.get("FAKE_DELAY", "3")))
+    sys.exit(run_real())
+elif mode == "orphan_exits":
+    # a helper in a session of its own, without the case's marker, that outlives the case
+    # briefly: an orphan that exits on its own after the case is over
+    env = {k: v for k, v in os.environ.items() if k != "HERTZ_CASE_TOKEN"}
+    subprocess.Popen(["sleep", "1"], start_new_session=True, env=env, stdout=subprocess.DEVNULL,
+                     stderr=subprocess.DEVNULL)
+    sys.exit(run_real())
 elif mode == "unknown_columns":
     run_real()
     with open(summary) as f:

@@ -3,7 +3,8 @@
 
 Each mutation replaces one piece of code and runs the tests that guard it; a
 mutation the tests do not catch is a hole in the suite. The files are restored
-whatever happens. `make mutate` runs them all (about 15 minutes on 2 cores).
+whatever happens. `make mutate` runs them all (about 25 minutes on 2 cores);
+`python tests/mutations.py symbolic --force` runs those whose name holds either word.
 """
 from __future__ import annotations
 
@@ -25,28 +26,133 @@ class Mutation:
 
 
 MUTATIONS = [
+    # the driver: tables, runs and sweeps
     Mutation("no repair of a line cut by a kill", "driver/table.py",
              'if not raw.endswith(b"\\n"):', "if False:",
-             ["tests/test_driver.py::test_a_table_is_validated_on_load_and_bad_lines_go_aside_by_number"]),
-    Mutation("no kill of running cases on Ctrl-C or a signal", "driver/sweep.py",
+             ["tests/test_table.py::test_a_table_is_validated_on_load_and_bad_lines_go_aside_by_number"]),
+    Mutation("no kill of running cases on Ctrl-C or a signal", "driver/sweeps.py",
              "        RUNNING.kill_all()\n        raise", "        raise",
-             ["tests/test_driver.py::test_killing_a_sweep_leaves_no_solver_running_and_resumes"]),
-    Mutation("repairs written in place, not atomically", "driver/table.py",
+             ["tests/test_sweeps.py::test_killing_a_sweep_leaves_no_solver_running_and_resumes"]),
+    Mutation("repairs written in place, not atomically", "driver/files.py",
              "        os.replace(tmp, path)", "        path.write_bytes(b''); path.write_bytes(tmp.read_bytes())",
-             ["tests/test_driver.py::test_a_kill_during_a_table_repair_loses_nothing"]),
+             ["tests/test_table.py::test_a_kill_during_a_table_repair_loses_nothing"]),
     Mutation("bad rows kept", "driver/table.py",
              "        if reason:\n            result.bad.append((number, reason, text))\n            continue",
              "        pass",
-             ["tests/test_driver.py::test_a_table_is_validated_on_load_and_bad_lines_go_aside_by_number"]),
+             ["tests/test_table.py::test_a_table_is_validated_on_load_and_bad_lines_go_aside_by_number"]),
     Mutation("exit code ignored when a summary exists", "driver/run.py",
-             "    if EXIT_OF_STATUS[status] != exit_code:", "    if False:",
-             ["tests/test_driver.py::test_every_solver_fault_is_a_failed_row_with_its_reason"]),
+             "    if table[status].code != exit_code:", "    if False:",
+             ["tests/test_run.py::test_every_solver_fault_is_a_failed_row_with_its_reason"]),
+    Mutation("exit codes copied into the driver, not read from -exits", "driver/run.py",
+             "    if table[status].code != exit_code:",
+             '    if {"converged": 0, "inaccurate": 5}.get(status, 3) != exit_code:',
+             ["tests/test_freefem.py::test_the_driver_follows_the_solvers_exit_table"]),
     Mutation("no reaping of a leftover solver on resume", "driver/run.py",
              "    reap_leftover(workdir)\n", "",
-             ["tests/test_driver.py::test_a_resumed_sweep_kills_a_leftover_solver_of_its_case"]),
+             ["tests/test_sweeps.py::test_a_resumed_sweep_kills_a_leftover_solver_of_its_case"]),
     Mutation("comments change the fingerprint", "driver/freefem.py",
              '    return "".join(_COMMENTS.sub("", path.read_text()).split())', "    return path.read_text()",
              ["tests/test_repo.py::test_the_fingerprint_ignores_comments_and_whitespace"]),
+    # inputs that lost data, escaped their folder, hung or gave tracebacks
+    Mutation("--force deletes the old rows before their reruns land", "driver/sweeps.py",
+             '    done = set(frame["case_id"]) - redo\n',
+             '    done = set(frame["case_id"]) - redo\n'
+             '    if redo:\n'
+             '        table.write_atomically(path, frame[~frame["case_id"].isin(redo)].to_csv(index=False))\n',
+             ["tests/test_sweeps.py::test_ctrl_c_during_a_forced_rerun_keeps_every_old_row"]),
+    Mutation("rows replaced by a rerun are dropped, not kept in stale/", "driver/table.py",
+             "    if checked.replaced:", "    if False:",
+             ["tests/test_sweeps.py::test_a_completed_forced_rerun_keeps_the_rows_it_replaced_in_stale"]),
+    Mutation("a study may be named like the environment record", "driver/layout.py",
+             '"bench", Path(ENVIRONMENT_FILE).stem,', '"bench",',
+             ["tests/test_sweeps.py::test_study_names_that_would_share_a_projects_file_are_refused"]),
+    Mutation("a second run of a case shares the first's folder", "driver/api.py",
+             "    for k in range(1, 1000 if unique else 2):", "    for k in range(1, 2):",
+             ["tests/test_run.py::test_two_runs_of_one_case_at_once_both_finish"]),
+    Mutation("case ids keep path characters", "driver/cases.py",
+             '        text = _UNSAFE.sub(lambda m: "".join(f"%{b:02X}" for b in m.group().encode()), text)\n', "",
+             ["tests/test_cases.py::test_a_case_id_is_one_safe_file_name_whatever_the_values"]),
+    Mutation("word options not checked against their choices", "driver/freefem.py",
+             "            if not isinstance(value, str) or value not in (self.choices or []):",
+             "            if not isinstance(value, str):",
+             ["tests/test_cli.py::test_bad_arguments_are_one_line_and_exit_2"]),
+    Mutation("a spec grid is built before it is counted", "driver/sweeps.py",
+             "        _check_size(grid.count, yes)", "        _check_size(len(grid.cases()), yes)",
+             ["tests/test_studies.py::test_a_grid_is_counted_before_it_is_built"]),
+    Mutation("no bounded handshake before the Dask client", "driver/dask_backend.py",
+             "                probe(address, timeout)\n", "",
+             ["tests/test_cli.py::test_a_scheduler_address_that_speaks_http_fails_within_the_connect_timeout"]),
+    Mutation("a chart without rows is drawn anyway", "driver/plots.py",
+             '    rows = pd.concat(need(frames, "no study rows"), ignore_index=True)',
+             "    rows = pd.concat(frames, ignore_index=True)",
+             ["tests/test_report.py::test_one_study_alone_gives_its_charts_and_a_note_for_each_other"]),
+    Mutation("a failed write is a traceback", "driver/files.py",
+             '        raise error(f"cannot write {path}: {exc.strerror or exc}") from None', "        raise",
+             ["tests/test_report.py::test_a_full_disk_is_one_clear_error_and_keeps_the_charts"]),
+    Mutation("charts written in place", "driver/plots.py",
+             '        files.replace_atomically(path, lambda tmp: fig.savefig(tmp, dpi=110, format="png"), ReportError)',
+             '        fig.savefig(path, dpi=110, format="png")',
+             ["tests/test_report.py::test_an_interrupted_chart_leaves_the_old_one_whole"]),
+    Mutation("only the four 2D outputs removed before a run", "driver/run.py",
+             "        if path.suffix in OUTPUT_SUFFIXES or path.name in (LOG_FILE, PID_FILE):",
+             '        if path.name in ("summary.csv", "profile.csv", "history.csv", "axis.csv", LOG_FILE, PID_FILE):',
+             ["tests/test_run.py::test_files_of_an_earlier_run_are_removed_before_a_run"]),
+    Mutation("--timeout without an upper bound", "driver/commands/common.py",
+             'type=positive(float, MAX_TIMEOUT, "seconds")', "type=positive(float)",
+             ["tests/test_cli.py::test_bad_arguments_are_one_line_and_exit_2"]),
+    Mutation("a number beyond any float overflows", "driver/freefem.py",
+             "        try:\n            return float(number)\n"
+             "        except OverflowError:\n            raise wrong from None",
+             "        return float(number)",
+             ["tests/test_freefem.py::test_bad_values_name_the_option_and_its_range"]),
+    Mutation("a Dask connection error is a traceback", "driver/dask_backend.py",
+             "        except Exception as exc:  # noqa: BLE001 - "
+             "whatever the comm layer raises is one line for the user",
+             "        except ZeroDivisionError as exc:",
+             ["tests/test_cli.py::test_tls_without_its_settings_is_one_clear_error"]),
+    Mutation("a table that is a folder is read as one", "driver/table.py",
+             "    if path.exists() and not path.is_file():\n"
+             "        raise TableError(f\"the table {path} is not a file\")\n",
+             "",
+             ["tests/test_table.py::test_a_table_that_is_a_folder_is_one_clear_error"]),
+    Mutation("a converged row without its answer counts as done", "driver/table.py",
+             "    if status in schema.ANSWERED:", "    if False:",
+             ["tests/test_table.py::test_a_hand_edited_answer_without_numbers_is_not_a_finished_case"]),
+    Mutation("symbolic links followed", "driver/files.py",
+             "    if path.is_symlink():\n        raise error(", "    if False:\n        raise error(",
+             ["tests/test_sweeps.py::test_a_planted_link_in_the_results_folder_stops_the_sweep"]),
+    Mutation("a repeated JSON key keeps the last value", "driver/studies.py",
+             "json.loads(text, object_pairs_hook=_unique_keys)", "json.loads(text)",
+             ["tests/test_studies.py::test_a_json_key_given_twice_is_refused"]),
+    Mutation("an option given twice keeps the last value", "driver/commands/common.py",
+             '            kwargs["action"] = Once', "            pass",
+             ["tests/test_cli.py::test_bad_arguments_are_one_line_and_exit_2"]),
+    Mutation("importing the driver makes a subreaper", "driver/run.py",
+             "RUNNING = Running()\n", "RUNNING = Running()\nbecome_subreaper()\n",
+             ["tests/test_run.py::test_importing_the_driver_changes_nothing_in_the_process"]),
+    Mutation("adopted orphans never reaped", "driver/run.py",
+             '        threading.Thread(target=_reap_forever, name="reaper", daemon=True).start()', "        pass",
+             ["tests/test_run.py::test_a_sweep_process_reaps_the_orphans_it_adopts"]),
+    Mutation("a rejected run leaves its folder", "driver/api.py",
+             "        if rejected(row):\n            # a refused run leaves nothing behind",
+             "        if False:\n            # a refused run leaves nothing behind",
+             ["tests/test_cli.py::test_a_rejected_run_prints_only_the_error_and_leaves_nothing_behind"]),
+    Mutation("a relative work folder handed to the solver as it is", "driver/run.py",
+             "    workdir = workdir.absolute()", "    workdir = workdir",
+             ["tests/test_run.py::test_a_relative_work_folder_is_the_callers_not_the_solvers"]),
+    Mutation("the wheel without the solver scripts", "setup.py",
+             "        shutil.copytree(SOURCE, target, ", "        0 and shutil.copytree(SOURCE, target, ",
+             ["tests/test_install.py"]),
+    Mutation("olive beside green for a status", "driver/plots.py",
+             '"inaccurate": "#F0E442"', '"inaccurate": "#c0ca33"',
+             ["tests/test_plots.py::test_converged_and_inaccurate_are_far_apart_for_every_reader"]),
+    Mutation("the field in units of E again", "driver/fields.py",
+             '    mesh[SCALED] = mesh["von_mises"] / p0', '    mesh[SCALED] = mesh["von_mises"]',
+             ["tests/test_fields.py::test_the_field_is_drawn_in_units_of_a_and_p0"]),
+    Mutation("skips pass unnoticed", "tests/conftest.py",
+             '"\\n  ".join(_UNEXPECTED))\n        session.exitstatus = 1', '"\\n  ".join(_UNEXPECTED))\n        pass',
+             ["tests/test_repo.py::test_a_skip_without_an_allowed_reason_fails_the_suite"]),
+    # the solver (edp/)
     Mutation("output written without the line check", "edp/lib/output.idp",
              'check = check + " && test \\"$(wc -l < " + partName[k] + ".part)\\" -eq " + partLines[k];',
              'check = check + "";',
@@ -105,15 +211,17 @@ def run(mutation: Mutation) -> bool:
         path.write_text(original)
 
 
-def main() -> int:
+def main(names: list[str]) -> int:
+    """Every mutation, or those whose name contains one of names."""
+    chosen = [m for m in MUTATIONS if not names or any(n in m.name for n in names)]
     caught = 0
-    for mutation in MUTATIONS:
+    for mutation in chosen:
         ok = run(mutation)
         caught += ok
         print(f"{'caught' if ok else 'MISSED'}  {mutation.name}  ({mutation.path})", flush=True)
-    print(f"{caught} of {len(MUTATIONS)} mutations caught")
-    return 0 if caught == len(MUTATIONS) else 1
+    print(f"{caught} of {len(chosen)} mutations caught")
+    return 0 if caught == len(chosen) else 1
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(main(sys.argv[1:]))

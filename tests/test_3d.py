@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 import pytest
+
 from hertz_reference import SEED, ellipsoid_from_depth, ellipsoid_from_load, sphere
 
 # The worked check of the issue (SI): Rx = 10 mm, Ry = 40 mm, steel, P = 100 N.

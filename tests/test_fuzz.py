@@ -87,7 +87,8 @@ def test_random_spec_files_define_cases_or_name_the_problem(grid, base):
         spec = Path(tmp) / "s.toml"
         spec.write_text("\n".join(lines))
         try:
-            name, cases = load_spec(spec)
+            grid = load_spec(spec)
+            name, cases = grid.name, grid.cases()
         except SpecError as exc:
             text = str(exc)
             assert text.startswith(f"spec {spec}: ")
@@ -113,7 +114,7 @@ def test_random_command_lines_parse_or_exit_with_a_usage_error(tokens):
     err = io.StringIO()
     try:
         with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
-            args = build_parser().parse_args(tokens)
+            args = build_parser(tokens).parse_args(tokens)
     except SystemExit as exc:
         assert exc.code in (0, 2)  # 0: --help; 2: usage error with a message
         if exc.code == 2:
@@ -123,3 +124,39 @@ def test_random_command_lines_parse_or_exit_with_a_usage_error(tokens):
         value = getattr(args, name, None)
         if value is not None:
             assert value > 0 and math.isfinite(value)
+
+
+path_like = st.sampled_from(["../..", "../../../victim", "/tmp", "a/b", ".", "..", "x.vtu", "../x.vtu", "~", ""])
+run_values = st.one_of(path_like, values)
+run_options = st.dictionaries(st.sampled_from(["model", "method", "n", "kpen", "nu", "d", "vtk", "out", "E", "order"]),
+                              run_values, min_size=1, max_size=3)
+
+
+@settings(max_examples=30, deadline=None)
+@given(run_options)
+def test_random_run_options_stay_inside_their_folders(options):
+    # a value may not carry the run, or its cleanup, outside the folders it names
+    from driver.api import solve_case
+    from driver.errors import HertzError
+    with tempfile.TemporaryDirectory() as tmp:
+        home = Path(tmp) / "home" / "user"
+        home.mkdir(parents=True)
+        sentinel = Path(tmp) / "victim" / "precious.csv"
+        sentinel.parent.mkdir()
+        sentinel.write_text("keep\n")
+        options = {k: v for k, v in options.items() if k not in ("vtk", "out") or v.endswith(".vtu") or k == "out"}
+        if "out" in options:
+            options["out"] = str(home / "out" / options["out"].strip("./~") if options["out"] else home / "out")
+        if "vtk" in options:
+            options["vtk"] = str(home / "fields" / Path(options["vtk"]).name)
+        try:
+            result = solve_case(options, timeout=120, results=home / "results")
+        except HertzError as exc:
+            assert "\n" not in str(exc)
+            assert not (home / "results").exists() or not any((home / "results").rglob("*.csv"))
+        else:
+            assert home in result.files.parents and result.status
+        assert sentinel.read_text() == "keep\n" and {p.name for p in sentinel.parent.iterdir()} == {"precious.csv"}
+        inside = (home.parent, sentinel.parent)
+        outside = [p for p in Path(tmp).rglob("*") if not any(p == top or top in p.parents for top in inside)]
+        assert not outside, outside

@@ -6,7 +6,8 @@ import subprocess
 
 import pytest
 
-from driver import EDP_DIR, freefem
+from driver import freefem
+from driver.layout import EDP_DIR
 
 
 def test_help_lists_every_option_with_default_range_and_meaning(solve):

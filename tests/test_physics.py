@@ -3,6 +3,7 @@ import math
 
 import numpy as np
 import pytest
+
 from hertz_reference import SEED, cylinder_half_width, cylinder_pressure, estar, sphere
 
 HZ = sphere(**SEED)

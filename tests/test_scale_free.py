@@ -2,9 +2,10 @@
 import math
 
 import pytest
-from hertz_reference import sphere
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+
+from hertz_reference import sphere
 
 # one dimensionless scene (E*, d/R and the mesh the same) in three unit systems
 UNITS = {"seed": ("10", "0.5", "0.02"), "SI": ("10e9", "0.5e-3", "0.02e-3"), "mm-MPa": ("10e3", "0.5", "0.02")}

@@ -17,13 +17,15 @@ from pathlib import Path
 
 import pytest
 
-from driver import ROOT, table
+from driver import table
 from driver.cases import Case
 from driver.run import MARKER
 from driver.studies import STUDIES
-from driver.sweep import Job, run_studies
+from driver.sweeps import Job, run_studies
 
-distributed = pytest.importorskip("distributed")
+from conftest import REPO as ROOT
+
+distributed = pytest.importorskip("distributed", reason="Dask is in the test extra (pip install -e '.[test]')")
 
 # not compared: what the clock and the machine say rather than the solver
 # (also every t_* time and *_mb memory column of summary.csv)

@@ -1,13 +1,14 @@
-"""Run the cases of a study in parallel into its table, row by row, resumably.
+"""Run the cases of studies in parallel into their tables, row by row, resumably.
 
-Each case runs in its own directory, results/runs/<study>/<case_id>/. Finished
-cases are appended to results/<study>.csv as they arrive (table.py); running
-the same command again runs only the missing cases. A lock keeps two sweeps
-off one table. Costly cases start first and the progress bar counts predicted
-cost, not cases, so its ETA holds. Ctrl-C, SIGTERM and SIGHUP stop the running
-solvers and keep every finished row. The cases run in a local thread pool
-(LocalPool), or as tasks on a Dask cluster (dask_backend.DaskExecutor, with
---scheduler): the table, the locks and the bar stay here either way.
+Each case runs in its own folder, <results>/runs/<study>/<case_id>/. Finished
+cases are appended to <results>/<study>.csv as they arrive (table.py); running
+the same command again runs only the missing cases. A rerun (--force,
+--retry-failed) replaces a case's row when it lands, so an interrupted rerun
+keeps every old row it did not replace. A lock keeps two sweeps off one table.
+Costly cases start first and the progress bar counts predicted cost, not
+cases, so its ETA holds. Ctrl-C, SIGTERM and SIGHUP stop the running solvers
+and keep every finished row. The cases run in a local thread pool or on a Dask
+cluster (executors.py).
 """
 from __future__ import annotations
 
@@ -19,32 +20,26 @@ import subprocess
 import sys
 import tempfile
 import time
-from collections.abc import Iterable
-from concurrent.futures import Future, ThreadPoolExecutor, as_completed
+from collections.abc import Callable
 from contextlib import ExitStack
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
 import pandas as pd
 from tqdm import tqdm
 
-from driver import ROOT, freefem, table
+from driver import files, freefem, layout, table
 from driver.cases import Case
-from driver.run import RUNNING, run_case
+from driver.errors import SweepError, TableError
+from driver.executors import Executor, make_executor
+from driver.run import RUNNING
 from driver.schema import RETRY_STATUSES, study_columns
+from driver.studies import STUDIES, load_spec
 
-LARGE_GRID = 10_000
-ENVIRONMENT_FILE = "sweep_environment.csv"
-
-
-class SweepError(RuntimeError):
-    """A sweep that cannot start or go on; the message says why."""
-
-
-def study_csv(results_dir: Path, study: str) -> Path:
-    return results_dir / f"{study}.csv"
+LARGE_GRID = 10_000     # cases; more need --yes
+LARGEST_GRID = 1_000_000  # cases; more cannot be held as a plan at all
 
 
 def check_writable(results_dir: Path) -> None:
@@ -53,7 +48,7 @@ def check_writable(results_dir: Path) -> None:
         with tempfile.NamedTemporaryFile(dir=results_dir, prefix=".write-test-"):
             pass
     except OSError as exc:
-        raise SweepError(f"results directory {results_dir} is not writable: {exc.strerror}") from None
+        raise SweepError(f"results folder {results_dir} is not writable: {exc.strerror}") from None
 
 
 def predicted_cost(case: Case) -> float:
@@ -91,9 +86,10 @@ def install_signal_handlers() -> None:
 def plan(study: str, cases: list[Case], results_dir: Path, force: bool = False,
          retry_failed: bool = False) -> tuple[list[Case], list[str]]:
     """The cases still to run (costly first), after repairing the table; messages say
-    what changed. The caller holds the study's lock."""
+    what changed. The caller holds the study's lock. Cases to run again keep their
+    rows until their reruns land."""
     columns = study_columns(freefem.summary_columns())
-    path = study_csv(results_dir, study)
+    path = layout.study_csv(results_dir, study)
     unique = list({c.case_id: c for c in cases}.values())
     frame, messages = table.prepare(path, columns, freefem.edp_hash())
     ids = {c.case_id for c in unique}
@@ -102,10 +98,7 @@ def plan(study: str, cases: list[Case], results_dir: Path, force: bool = False,
         redo = ids & set(frame["case_id"])
     elif retry_failed:
         redo = ids & set(frame.loc[frame["status"].isin(RETRY_STATUSES), "case_id"])
-    if redo:
-        table.remove_cases(path, columns, redo)
-        frame = frame[~frame["case_id"].isin(redo)]
-    done = set(frame["case_id"])
+    done = set(frame["case_id"]) - redo
     todo = [c for c in unique if c.case_id not in done]
     todo.sort(key=predicted_cost, reverse=True)
     return todo, messages
@@ -121,72 +114,68 @@ class Job:
     repeats: int = 1
 
 
-class Executor(Protocol):
-    """Where the cases run: each submitted case comes back once, as a row."""
-
-    def submit(self, case: Case, workdir: Path, timeout: float, study: str, summary: list[str],
-               repeats: int) -> Any: ...
-
-    def as_completed(self, futures: list) -> Iterable: ...
-
-    def collect(self, future: Any, case: Case, workdir: Path, study: str, columns: list[str]) -> dict: ...
-
-    def cancel(self, futures: list) -> None: ...
-
-    def close(self) -> None: ...
-
-
-class LocalPool:
-    """Each case in a thread of this process, which starts and watches its solver."""
-
-    def __init__(self, jobs: int):
-        self.jobs = jobs
-        self.pool = ThreadPoolExecutor(max_workers=jobs)
-
-    def submit(self, case: Case, workdir: Path, timeout: float, study: str, summary: list[str],
-               repeats: int) -> Future:
-        return self.pool.submit(run_case, case, workdir, timeout, study, summary, self.jobs, repeats)
-
-    def as_completed(self, futures: list) -> Iterable:
-        return as_completed(futures)
-
-    def collect(self, future: Future, case: Case, workdir: Path, study: str, columns: list[str]) -> dict:
-        return future.result()  # run_case returns a row whatever happened
-
-    def cancel(self, futures: list) -> None:
-        for future in futures:
-            future.cancel()
-
-    def close(self) -> None:
-        self.pool.shutdown(wait=True, cancel_futures=True)
+def jobs_from(names: list[str] | None = None, spec: Path | None = None, quick: bool = False,
+              yes: bool = False) -> list[Job]:
+    """The jobs of named studies, or of one spec file; its grid is counted before it is built."""
+    if spec is not None:
+        if names:
+            raise SweepError("--spec runs one grid; give no study names or --all with it")
+        grid = load_spec(spec)
+        _check_size(grid.count, yes)  # before building: a product of axes can be astronomical
+        return [Job(grid.name, grid.cases())]
+    if not names:
+        raise SweepError("name at least one study, or use --all or --spec")
+    jobs = []
+    for name in names:
+        if name not in STUDIES:
+            raise SweepError(f"unknown study '{name}'; known: {', '.join(STUDIES)}")
+        study = STUDIES[name]
+        jobs.append(Job(name, study.make(quick), study.keep, study.repeats))
+    _check_size(sum(len(j.cases) for j in jobs), yes)
+    return jobs
 
 
-def make_executor(jobs: int, scheduler: str | None = None, say=None) -> Executor:
-    if not scheduler:
-        return LocalPool(jobs)
-    from driver.dask_backend import DaskExecutor
-    return DaskExecutor(scheduler, say or print)
+def _check_size(count: int, yes: bool) -> None:
+    if count > LARGEST_GRID:
+        raise SweepError(f"{count:.3g} cases: a grid above {LARGEST_GRID:.0e} cannot be planned; split it")
+    if count > LARGE_GRID and not yes:
+        raise SweepError(f"{count} cases: a grid above {LARGE_GRID} needs --yes")
+
+
+def _check_folders(results_dir: Path, study: str) -> None:
+    """Nothing a sweep writes may be a planted symbolic link."""
+    for path, what in ((layout.study_csv(results_dir, study), "table"),
+                       (layout.study_lock(results_dir, study), "lock"),
+                       (results_dir / layout.RUNS, "work folder"),
+                       (layout.work_root(results_dir, study), "work folder"),
+                       (results_dir / study, "folder"),
+                       (results_dir / layout.STALE, "folder")):
+        files.refuse_symlink(path, what, SweepError)
 
 
 def run_studies(jobs_list: list[Job], results_dir: Path, jobs: int, timeout: float,
                 force: bool = False, retry_failed: bool = False, progress: bool = False,
-                say=None, scheduler: str | None = None) -> list[Outcome]:
+                say: Callable[[str], None] | None = None, scheduler: str | None = None) -> list[Outcome]:
     """Sweep several studies under one progress bar, holding their locks throughout.
     With a scheduler (a Dask address, or local:N) the cases run on its workers."""
+    say = say or print
+    results_dir = layout.user_path(results_dir)
     freefem.check_freefem()
-    check_writable(results_dir)
     for job in jobs_list:
         table.check_name(job.study)
+    check_writable(results_dir)
+    for job in jobs_list:
+        _check_folders(results_dir, job.study)
     columns = study_columns(freefem.summary_columns())
     outcomes = []
     with ExitStack() as locks:
         for job in jobs_list:
-            locks.enter_context(table.StudyLock(study_csv(results_dir, job.study).with_suffix(".lock")))
+            locks.enter_context(table.StudyLock(layout.study_lock(results_dir, job.study)))
         plans = []
         for job in jobs_list:
             todo, messages = plan(job.study, job.cases, results_dir, force, retry_failed)
             for message in messages:
-                (say or print)(message)
+                say(message)
             plans.append((job, todo, messages))
         total = sum(predicted_cost(c) * job.repeats for job, todo, _ in plans for c in todo)
         # connect only when there is work: a finished sweep needs no cluster
@@ -197,11 +186,14 @@ def run_studies(jobs_list: list[Job], results_dir: Path, jobs: int, timeout: flo
                    bar_format="{l_bar}{bar}| {percentage:3.0f}% [{elapsed}<{remaining}]{postfix}")
         try:
             for job, todo, messages in plans:
-                path = study_csv(results_dir, job.study)
-                ran = _run_all(job.study, todo, path, columns, results_dir / "runs" / job.study,
+                path = layout.study_csv(results_dir, job.study)
+                ran = _run_all(job.study, todo, path, columns, layout.work_root(results_dir, job.study),
                                executor, timeout, bar, job.repeats) if executor else 0
                 if ran:
                     record_environment(results_dir)
+                    # reruns landed: their cases' earlier rows go to stale/
+                    for message in table.prepare(path, columns, freefem.edp_hash())[1]:
+                        say(message)
                 frame = table.read(path)
                 ids = {c.case_id for c in job.cases}
                 mine = frame[frame["case_id"].isin(ids)] if len(frame) else frame
@@ -239,7 +231,7 @@ def _run_all(study: str, todo: list[Case], path: Path, columns: list[str], workr
             row = executor.collect(future, case, workroot / case.case_id, study, columns)
             try:
                 table.append_row(path, row, columns)
-            except table.TableError as exc:
+            except TableError as exc:
                 raise SweepError(f"{exc}; the rows written so far are kept") from None
             done += 1
             if bar is not None:
@@ -255,8 +247,9 @@ def _run_all(study: str, todo: list[Case], path: Path, columns: list[str], workr
 
 def gather(study: str, results_dir: Path, rows: pd.DataFrame, keep: tuple[str, ...]) -> None:
     """Collect the kept per-case files of the study's rows into results/<study>/<file>,
-    keeping earlier data of cases whose work directory is gone (a fresh clone)."""
+    keeping earlier data of cases whose work folder is gone (a fresh clone)."""
     target_dir = results_dir / study
+    files.refuse_symlink(target_dir, "folder", SweepError)
     target_dir.mkdir(exist_ok=True)
     ids = set(rows["case_id"])
     for name in keep:
@@ -265,8 +258,8 @@ def gather(study: str, results_dir: Path, rows: pd.DataFrame, keep: tuple[str, .
         parts = []
         fresh = set()
         for case_id in ids:
-            source = results_dir / "runs" / study / case_id / name
-            if source.exists() and source.stat().st_size > 0:
+            source = layout.work_root(results_dir, study) / case_id / name
+            if source.is_file() and not source.is_symlink() and source.stat().st_size > 0:
                 try:
                     part = pd.read_csv(source)
                 except (ValueError, OSError):
@@ -295,13 +288,16 @@ def record_environment(results_dir: Path) -> None:
     cpu = next((ln.split(":", 1)[1].strip() for ln in _command_output(["cat", "/proc/cpuinfo"]).splitlines()
                 if ln.startswith("model name")), platform.machine())
     env = {"date": time.strftime("%Y-%m-%d"),
-           "commit": _command_output(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"]).strip(),
+           "commit": _command_output(["git", "-C", str(freefem.EDP_DIR), "rev-parse", "--short", "HEAD"]).strip()
+           or "unknown",
            "solver code": freefem.edp_hash(),
            "FreeFEM": next((p.split()[1] for p in packages if p.startswith("freefem++ ")), "unknown"),
            "MUMPS": next((p.split()[1] for p in packages if p.startswith("libmumps")), "unknown"),
            "Python": platform.python_version(), "numpy": np.__version__, "pandas": pd.__version__,
            "CPU": f"{cpu}, {cores()} cores"}
-    table.write_atomically(results_dir / ENVIRONMENT_FILE, pd.DataFrame([env]).to_csv(index=False))
+    target = results_dir / layout.ENVIRONMENT_FILE
+    table.refuse_symlink(target, "environment record")
+    table.write_atomically(target, pd.DataFrame([env]).to_csv(index=False))
 
 
 def report_unexpected(outcomes: list[Outcome], stream=sys.stderr, limit: int = 20) -> int:

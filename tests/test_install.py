@@ -1,0 +1,54 @@
+"""A non-editable install (pip install . into a fresh virtual environment) runs cases from any folder:
+the wheel carries the solver scripts (setup.py copies edp/ into the package)."""
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+import driver
+
+from conftest import copy_tracked
+
+
+@pytest.fixture(scope="module")
+def venv(tmp_path_factory):
+    source = copy_tracked(tmp_path_factory.mktemp("clone"))
+    env_dir = tmp_path_factory.mktemp("venv")
+    subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", str(env_dir)], check=True)
+    # the dependencies come from this machine's site-packages; the package itself is built and installed
+    proc = subprocess.run([str(env_dir / "bin" / "pip"), "install", "-q", "--no-deps", str(source)],
+                          capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stdout[-2000:] + proc.stderr[-2000:]
+    return env_dir
+
+
+def _env() -> dict[str, str]:
+    return {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
+
+
+def test_the_installed_command_runs_a_case_from_another_folder(venv, tmp_path):
+    proc = subprocess.run([str(venv / "bin" / "hertz"), "run", "--n", "8", "--json"], cwd=tmp_path,
+                          capture_output=True, text=True, env=_env(), timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout)["status"] == "converged"
+    assert (tmp_path / "results" / "runs" / "single" / "n=8" / "summary.csv").is_file()
+
+
+SOLVE = """
+import driver, driver.layout
+from driver import solve
+result = solve(n=8, method="lagrange")
+print(driver.__file__, driver.layout.EDP_DIR, driver.__version__, result.status, result.files, sep="\\n")
+"""
+
+
+def test_solve_uses_the_solver_scripts_shipped_in_the_package(venv, tmp_path):
+    proc = subprocess.run([str(venv / "bin" / "python"), "-c", SOLVE], cwd=tmp_path, capture_output=True,
+                          text=True, env=_env(), timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    package, edp, version, status, files = proc.stdout.split("\n")[:5]
+    assert package.startswith(str(venv)) and edp == str(venv / "lib" / f"python{sys.version_info.major}."
+                                                      f"{sys.version_info.minor}" / "site-packages" / "driver" / "edp")
+    assert version == driver.__version__ and status == "converged" and files.startswith(str(tmp_path))

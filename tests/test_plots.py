@@ -1,0 +1,57 @@
+"""driver/plots.py: charts a colour-blind reader can read."""
+import itertools
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+import pytest
+from matplotlib.colors import to_rgb
+
+from driver import plots
+
+# Machado, Oliveira and Fernandes (2009), full severity, on linear RGB
+VISION = {
+    "normal": np.eye(3),
+    "protanopia": np.array([[0.152286, 1.052583, -0.204868], [0.114503, 0.786281, 0.099216],
+                            [-0.003882, -0.048116, 1.051998]]),
+    "deuteranopia": np.array([[0.367322, 0.860646, -0.227968], [0.280085, 0.672501, 0.047413],
+                              [-0.011820, 0.042940, 0.968881]]),
+    "tritanopia": np.array([[1.255528, -0.076749, -0.178779], [-0.078411, 0.930809, 0.147602],
+                            [0.004733, 0.691367, 0.303900]]),
+}
+
+
+def _lab(color: str, vision: str) -> np.ndarray:
+    """CIELAB of a colour as a reader with this vision sees it."""
+    srgb = np.asarray(to_rgb(color))
+    linear = np.where(srgb <= 0.04045, srgb / 12.92, ((srgb + 0.055) / 1.055) ** 2.4)
+    seen = np.clip(VISION[vision] @ linear, 0, 1)
+    xyz = np.array([[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]]) @ seen
+    t = xyz / np.array([0.95047, 1.0, 1.08883])
+    f = np.where(t > 0.008856, np.cbrt(t), 7.787 * t + 16 / 116)
+    return np.array([116 * f[1] - 16, 500 * (f[0] - f[1]), 200 * (f[1] - f[2])])
+
+
+@pytest.mark.parametrize("vision", list(VISION))
+def test_converged_and_inaccurate_are_far_apart_for_every_reader(vision):
+    # olive against green (delta E 32 for protanopes); a clear difference is above 50
+    colors = plots.STATUS_COLORS
+    distance = np.linalg.norm(_lab(colors["converged"], vision) - _lab(colors["inaccurate"], vision))
+    assert distance > 50, distance
+
+
+def test_statuses_that_colour_alone_cannot_separate_differ_by_hatch():
+    hatches = plots.STATUS_HATCHES
+    assert set(hatches) == set(plots.STATUS_COLORS) and len(set(hatches.values())) == len(hatches)
+    for a, b in itertools.combinations(plots.STATUS_COLORS, 2):
+        close = min(np.linalg.norm(_lab(plots.STATUS_COLORS[a], v) - _lab(plots.STATUS_COLORS[b], v)) for v in VISION)
+        assert close > 20 or hatches[a] != hatches[b], (a, b)
+
+
+def test_the_stability_cells_carry_their_status_hatch():
+    frame = pd.DataFrame({"x": [1, 2, 3], "y": ["a", "a", "a"], "status": ["converged", "inaccurate", "diverged"]})
+    fig, ax = plt.subplots()
+    plots._grid(ax, frame, "x", "y", lambda row: "")
+    hatches = [patch.get_hatch() or "" for patch in ax.patches]
+    plt.close(fig)
+    assert hatches == [plots.STATUS_HATCHES[s] for s in frame["status"]]
