@@ -104,8 +104,10 @@ CAPTIONS = {
     "seed_figure1": "The seed's Figure 1 redone: surface displacement, gap h - u_z and the indenter for "
                     "soft to stiff penalties; a soft penalty lets the indenter sink into the body.",
     "axis_stresses": "sigma_z, sigma_r and tau_max = |sigma_r - sigma_z|/2 along the axis against Hertz.",
-    "domain": "Force bias of the clamped finite domain against its radius L/a (exact contact, so no "
-              "penalty error): it follows 0.94% x 100a/L until the discretization floor.",
+    "domain": "Force and peak-pressure bias of a finite domain against its radius L/a (exact contact, so no "
+              "penalty error): a clamped far boundary follows 0.94% x 100a/L; Boussinesq's boundary (the rest "
+              "of the half-space moving as a point load of the contact force, the default) stays at the "
+              "discretization floor from L = 10 a.",
     "over_modelling": "The same sphere solved axisymmetric (solid) and in 3D (dashed, a quarter of the "
                       "half-space on TetGen meshes) over meshes: error against wall time, peak memory and "
                       "dofs. The title compares, at the most accurate converged 3D case, the cheapest axi case "

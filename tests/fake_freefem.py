@@ -33,20 +33,20 @@ if mode == "exits_shifted":
     sys.exit(code + 10 if any(flag in args for flag in ("-options", "-columns")) is False else code)
 
 if mode == "grown":
-    # a later hertz.edp with one more word option (-shape) and two more summary columns
+    # a later hertz.edp with one more word option (-finish) and two more summary columns
     if "-options" in args or "-columns" in args:
         out = subprocess.run([real, *args], capture_output=True, text=True).stdout
         for line in out.splitlines():
             if line.startswith("-check,"):
-                print('-shape,word,"sphere","sphere, flat","indenter shape"')
-            print(line + (",shape,S_fe" if line.startswith("model,") else ""))
+                print('-finish,word,"polished","polished, rough","indenter finish"')
+            print(line + (",finish,Z_fe" if line.startswith("model,") else ""))
         sys.exit(0)
     if "-exits" in args:
         sys.exit(run_real())
-    shape = "sphere"
-    if "-shape" in args:
-        k = args.index("-shape")
-        shape = args[k + 1]
+    finish = "polished"
+    if "-finish" in args:
+        k = args.index("-finish")
+        finish = args[k + 1]
         del args[k:k + 2]
     code = run_real()
     out = args[args.index("-out") + 1]
@@ -54,7 +54,7 @@ if mode == "grown":
     with open(summary) as f:
         head, row = f.read().splitlines()[:2]
     with open(summary, "w") as f:
-        f.write(f"{head},shape,S_fe\n{row},{shape},1.5\n")
+        f.write(f"{head},finish,Z_fe\n{row},{finish},1.5\n")
     sys.exit(code)
 
 if any(flag in args for flag in ("-options", "-columns", "-exits")) or not mode:

@@ -1,4 +1,4 @@
-"""Hertz theory written again, independently of edp/lib/hertz.idp, for the tests (HERTZ.md)."""
+"""Hertz theory written again, independently of edp/lib/reference.idp, for the tests (docs/physics.md)."""
 from __future__ import annotations
 
 import math
@@ -22,6 +22,21 @@ def sphere(E: float, nu: float, R: float, d: float) -> Sphere:
     a = math.sqrt(R * d)
     F = 4 / 3 * estar(E, nu) * a * d
     return Sphere(a, F, 3 * F / (2 * math.pi * a**2))
+
+
+def sphere_from_load(E: float, nu: float, R: float, P: float) -> Sphere:
+    """The sphere under a load P: a = (3 P R/(4 E*))^(1/3), d = a^2/R."""
+    a = (3 * P * R / (4 * estar(E, nu))) ** (1 / 3)
+    return Sphere(a, P, 3 * P / (2 * math.pi * a**2))
+
+
+def sphere_depth(E: float, nu: float, R: float, P: float) -> float:
+    return sphere_from_load(E, nu, R, P).a ** 2 / R
+
+
+def punch_stiffness(E: float, nu: float, a: float) -> float:
+    """dF/dd of any axisymmetric punch of contact radius a (Sneddon): 2 E* a."""
+    return 2 * estar(E, nu) * a
 
 
 def cylinder_half_width(P: float, E: float, nu: float, R: float) -> float:

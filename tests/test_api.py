@@ -32,7 +32,7 @@ def test_solve_reports_an_unconverged_run_as_a_result_not_an_exception(tmp_path)
 
 @pytest.mark.parametrize("options,error,words", [
     ({"kpn": 1e5}, OptionError, "unknown option kpn"),
-    ({"nu": 0.7}, OptionError, "nu must be a number in (-1, 0.5)"),
+    ({"nu": 0.7}, OptionError, "nu must be a number in (-1, 0.5]"),
     ({"method": "newtonian"}, OptionError, "method must be one of"),
     ({"timeout": 1e10}, OptionError, "timeout"),
     ({"d": 0.6}, RejectedError, "-d must be a number in (0, 1) R"),

@@ -30,7 +30,7 @@ def test_version():
     (["sweep"], "at least one study"),
     (["run", "--n", "6", "--n", "8"], "--n is given twice"),  # n = 8 used to run
     (["sweep", "kpen", "--jobs", "1", "--jobs", "2"], "--jobs is given twice"),
-    (["run", "--nu", "0.7"], "--nu must be a number in (-1, 0.5), got '0.7'"),
+    (["run", "--nu", "0.7"], "--nu must be a number in (-1, 0.5], got '0.7'"),
     (["run", "--kpen", "-1"], "--kpen must be a number in (0, inf), got '-1'"),
     (["run", "--model", "../../../../../victim"], "--model must be one of auto, axi, plane, 3d"),
     (["run", "--check", "1"], "unrecognized arguments"),
@@ -95,7 +95,7 @@ def test_run_out_refuses_a_folder_of_someone_elses_files(tmp_path):
 
 
 def test_run_passes_the_solvers_exit_code(tmp_path):
-    proc = cli("run", "--n", "4", "--L", "50", "--results", str(tmp_path))
+    proc = cli("run", "--n", "4", "--L", "50", "--farfield", "clamped", "--results", str(tmp_path))
     assert proc.returncode == 5 and "status                    inaccurate" in proc.stdout
 
 
@@ -149,7 +149,7 @@ def test_a_table_that_is_a_folder_is_one_clear_error(tmp_path):
 
 def test_a_spec_integer_beyond_any_float_is_one_clear_error(tmp_path):
     (tmp_path / "s.toml").write_text('name = "big"\n[grid]\nn = [1' + "0" * 400 + "]\n")
-    assert "n must be an integer in [2, 400]" in one_error_line(hertz("sweep", "--spec", "s.toml", cwd=tmp_path))
+    assert "n must be an integer in [3, 400]" in one_error_line(hertz("sweep", "--spec", "s.toml", cwd=tmp_path))
 
 
 def test_tls_without_its_settings_is_one_clear_error(tmp_path):

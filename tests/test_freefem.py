@@ -32,9 +32,9 @@ def test_good_values_parse_to_what_hertz_edp_reads(name, value, expect):
 
 
 @pytest.mark.parametrize("name,value,words", [
-    ("nu", "0.7", "(-1, 0.5)"), ("kpen", "-1", "(0, inf)"), ("n", "2.5", "an integer"), ("n", "1", "[2, 400]"),
+    ("nu", "0.7", "(-1, 0.5]"), ("kpen", "-1", "(0, inf)"), ("n", "2.5", "an integer"), ("n", "1", "[3, 400]"),
     ("model", "../../victim", "one of auto"), ("kpen", "1e400", "(0, inf)"), ("kpen", "nan", "(0, inf)"),
-    ("n", 10**400, "[2, 400]"), ("E", 10**400, "(0, inf)"), ("order", True, "an integer"), ("d", "inf", "(0, 1) R"),
+    ("n", 10**400, "[3, 400]"), ("E", 10**400, "(0, inf)"), ("order", True, "an integer"), ("d", "inf", "(0, 1) R"),
 ])
 def test_bad_values_name_the_option_and_its_range(name, value, words):
     with pytest.raises(OptionError) as error:
@@ -61,17 +61,17 @@ def test_the_driver_follows_the_solvers_exit_table(fake_solver, monkeypatch, tmp
     # a hertz.edp whose codes are all 10 higher: a copy of the old table in the driver would call
     # every run a mismatch; the driver reads -exits and agrees with the solver
     monkeypatch.setenv("FAKE_MODE", "exits_shifted")
-    proc = cli("run", "--n", "4", "--L", "50", "--results", str(tmp_path))
-    assert proc.returncode == 15, proc.stderr  # inaccurate (5), shifted
+    proc = cli("run", "--n", "4", "--L", "50", "--farfield", "clamped", "--results", str(tmp_path))
+    assert proc.returncode == 15, proc.stderr  # inaccurate (5: the clamped boundary at 50 a), shifted
     assert "status                    inaccurate" in proc.stdout
 
 
 def test_new_options_and_columns_are_read_from_the_solver_not_listed(fake_solver, monkeypatch, tmp_path):
-    # a later hertz.edp with a word option -shape and columns shape, S_fe: the driver takes them as they come
+    # a later hertz.edp with a word option -finish and columns finish, Z_fe: the driver takes them as they come
     monkeypatch.setenv("FAKE_MODE", "grown")
-    proc = cli("run", "--shape", "flat", "--n", "8", "--json", "--results", str(tmp_path))
+    proc = cli("run", "--finish", "rough", "--n", "8", "--json", "--results", str(tmp_path))
     assert proc.returncode == 0, proc.stderr
     row = json.loads(proc.stdout)
-    assert row["shape"] == "flat" and row["S_fe"] == 1.5 and row["status"] == "converged"
-    assert one_error_line(cli("run", "--shape", "cube", "--results", str(tmp_path))).endswith(
-        "--shape must be one of sphere, flat, got 'cube'")
+    assert row["finish"] == "rough" and row["Z_fe"] == 1.5 and row["status"] == "converged"
+    assert one_error_line(cli("run", "--finish", "matte", "--results", str(tmp_path))).endswith(
+        "--finish must be one of polished, rough, got 'matte'")

@@ -36,7 +36,7 @@ def test_spec_file_defines_a_grid(tmp_path):
     ('name = "x"\n[grid]\nmethod = ["sphere"]', "method must be one of"),
     ('name = "x"\n[grid]\nout = ["/tmp"]', "unknown parameter 'out'"),
     ('name = "x"\n[grid]\nkpen = [-1.0]', r"kpen must be a number in \(0, inf\)"),
-    ('name = "x"\n[grid]\nn = [1' + "0" * 400 + "]", r"n must be an integer in \[2, 400\]"),
+    ('name = "x"\n[grid]\nn = [1' + "0" * 400 + "]", r"n must be an integer in \[3, 400\]"),
     ('name = "x"\n[grid]\nE = [1' + "0" * 400 + "]", r"E must be a number in \(0, inf\)"),
     ('name = "kpen"\n[grid]\nn = [4]', "built-in study"),
     ('name = "bench"\n[grid]\nn = [4]', "study name"),

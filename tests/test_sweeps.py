@@ -16,7 +16,7 @@ from driver.sweeps import plan, sweep
 
 from conftest import REPO, cli, solvers_under
 
-TINY = Case.of(n=4, L=50.0)  # ~0.1 s (inaccurate: 2% off by its own estimate)
+TINY = Case.of(n=4, L=50.0, farfield="clamped")  # ~0.1 s (inaccurate: the clamped boundary at 50 a costs 2%)
 
 
 def test_sweep_resumes_without_duplicates_and_retries_only_failures(tmp_path):
@@ -50,10 +50,10 @@ def test_a_completed_forced_rerun_keeps_the_rows_it_replaced_in_stale(tmp_path):
 def test_ctrl_c_during_a_forced_rerun_keeps_every_old_row(fake_solver, tmp_path):
     # --force used to delete the old rows before their reruns finished
     spec = tmp_path / "s.toml"
-    spec.write_text('name = "t"\n[base]\nn = 4\nL = 50.0\n[grid]\nkpen = [1e5, 1e6, 1e7]\n')
+    spec.write_text('name = "t"\n[base]\nn = 4\nL = 50.0\nfarfield = "clamped"\n[grid]\nkpen = [1e5, 1e6, 1e7]\n')
     first = cli("sweep", "--spec", str(spec), "--results", str(tmp_path), "--no-progress",
                 env=dict(os.environ, FAKE_MODE=""))
-    assert first.returncode == 1 and "3 case(s)" in first.stderr  # inaccurate at n = 4, and said so
+    assert first.returncode == 1 and "3 case(s)" in first.stderr  # inaccurate (clamped at 50 a), and said so
     before = table.read(tmp_path / "t.csv")
     assert len(before) == 3
     rerun = subprocess.Popen([sys.executable, "-m", "driver", "sweep", "--spec", str(spec), "--force",
