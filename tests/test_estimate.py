@@ -4,9 +4,10 @@ again in hertz_reference.py (the sphere from its depth, the cylinder's relations
 import math
 
 import pytest
-from hertz_reference import cylinder_half_width, cylinder_pressure, sphere
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+
+from hertz_reference import cylinder_half_width, cylinder_pressure, sphere
 
 
 def true_error(s: dict) -> float:

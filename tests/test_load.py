@@ -3,8 +3,18 @@ Hertz written again in hertz_reference.py (a, d and p0 from the load; S = 2 E* a
 import math
 
 import pytest
-from hertz_reference import (SEED, cylinder_half_width, cylinder_pressure, ellipsoid_from_load, estar,
-                             punch_stiffness, sphere, sphere_depth, sphere_from_load)
+
+from hertz_reference import (
+    SEED,
+    cylinder_half_width,
+    cylinder_pressure,
+    ellipsoid_from_load,
+    estar,
+    punch_stiffness,
+    sphere,
+    sphere_depth,
+    sphere_from_load,
+)
 
 SEED_LOAD = sphere(**SEED).F  # the load of the seed scene's depth
 
