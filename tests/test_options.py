@@ -67,6 +67,11 @@ BAD_INPUTS = [
     (["-accuracy", "0.5"], "-accuracy"), (["-accuracy", "0.01", "-n", "8"], "-n"),
     (["-n", "400", "-L", "10"], "-maxdof"), (["-E", "1e-300", "-d", "1e-300"], "scale"),
     (["-E", "1e-6", "-kpen", "1e15"], "-kpen"), (["-R", "1e6", "-d", "1e4", "-kpen", "1e12"], "-kpen"),
+    # values that used to stop FreeFEM with a division by zero (exit 8)
+    (["-Rx", "0.5", "-Ry", "1e15"], "-Rx"), (["-Rx", "1e-300", "-Ry", "1e300"], "-Rx"),
+    (["-Rx", "0.5", "-Ry", "inf", "-model", "3d"], "-model"), (["-d", "5e-324"], "scale"),
+    (["-P", "5e-324"], "scale"), (["-Rx", "0.5", "-Ry", "1e15", "-check", "1"], "-Rx"),
+    (["-vtk", "/tmp/" + "x" * 250 + ".vtu"], "-vtk"),
 ]
 
 

@@ -75,3 +75,12 @@ def test_accuracy_reaches_its_target_or_says_why(solve):
     short = solve("-accuracy", "0.001", "-order", "1", "-maxdof", "2e4")
     assert short.exit_code == 5 and "mesh limit" in short.output
     assert short.summary["status"] == "inaccurate" and "accuracy-missed" in short.summary["warnings"]
+
+
+def test_a_fixed_point_at_its_rounding_floor_is_roundoff_not_diverged(solve):
+    # a stable fixed point whose residual stops at 4e-13, above an explicit -tol 1e-14
+    run = solve("-method", "fixedpoint", "-kpen", "10", "-tol", "1e-14")
+    s = run.summary
+    assert run.exit_code == 3 and s["status"] == "roundoff" and s["residual"] < 1e-10, run.output
+    # beyond its stability limit it still diverges
+    assert solve("-method", "fixedpoint", "-kpen", "1e4").summary["status"] == "diverged"
