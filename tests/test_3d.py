@@ -112,3 +112,31 @@ def test_the_3d_vtk_file_holds_the_fields(solve, tmp_path_factory):
         assert f'Name="{field}"' in volume, field
     assert 'Name="pressure"' in surface and path.with_name("sphere3d_near.vtu").exists()
     assert math.isfinite(run.summary["p0_fe"])
+
+
+@pytest.mark.parametrize("ratio,model", [(1 + 1e-7, "axi"), (1.005, "axi"), (1.1, "3d")])
+def test_model_auto_chooses_by_the_error_of_the_simpler_model(solve, ratio, model):
+    # the axisymmetric model with R = sqrt(Rx Ry) is off by about ln(Ry/Rx)/3 on the semi-axes:
+    # it is chosen while that is below a third of the 1% bar
+    run = solve("-Rx", "0.5", "-Ry", repr(0.5 * ratio), "-check", "1")
+    assert run.exit_code == 0 and "model auto: an ellipsoid with Ry/Rx" in run.stdout, run.output
+    assert ("axisymmetric model with R = sqrt(Rx Ry) is off" in run.stdout) == (model == "axi")
+
+
+def test_a_nearly_round_ellipsoid_is_solved_axisymmetric_in_a_fraction_of_a_second(solve):
+    import time
+    start = time.perf_counter()
+    run = solve("-Rx", "0.5", "-Ry", repr(0.5 * (1 + 1e-7)))
+    assert time.perf_counter() - start < 2  # measured 0.29 s (3D: 9.5 s)
+    s = run.summary
+    assert run.exit_code == 0 and s["model"] == "axi"
+    ref = ellipsoid_from_depth(SEED["d"], SEED["E"], SEED["nu"], 0.5, 0.5 * (1 + 1e-7))
+    assert s["a_fe"] == pytest.approx(ref.b_short, rel=1e-3) and s["b_fe"] == pytest.approx(ref.a_long, rel=1e-3)
+
+
+def test_the_axisymmetric_model_of_an_ellipsoid_estimates_its_own_error(solve):
+    # Ry/Rx = 1.1 asked for as axi: the semi-axes are 3.2% off and the estimate says so
+    s = solve("-Rx", "0.5", "-Ry", "0.55", "-model", "axi", "-method", "lagrange").summary
+    truth = max(abs(s["err_a"]), abs(s["err_b"]))
+    assert s["status"] == "inaccurate" and 0.02 < truth < 0.05
+    assert truth / 1.5 < s["accuracy_predicted"] < 1.5 * truth
