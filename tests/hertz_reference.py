@@ -34,6 +34,15 @@ def sphere_depth(E: float, nu: float, R: float, P: float) -> float:
     return sphere_from_load(E, nu, R, P).a ** 2 / R
 
 
+def sphere_deflection(r: float, a: float, d: float, R: float) -> float:
+    """Hertz's surface deflection (downwards) at radius r: the indenter's shape inside
+    the contact, (d/pi)[(2 - r^2/a^2) asin(a/r) + sqrt(r^2/a^2 - 1)] outside (Johnson 3.42)."""
+    if r <= a:
+        return d - r * r / (2 * R)
+    rho = r / a
+    return d / math.pi * ((2 - rho * rho) * math.asin(1 / rho) + math.sqrt(rho * rho - 1))
+
+
 def punch_stiffness(E: float, nu: float, a: float) -> float:
     """dF/dd of any axisymmetric punch of contact radius a (Sneddon): 2 E* a."""
     return 2 * estar(E, nu) * a

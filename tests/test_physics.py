@@ -4,7 +4,7 @@ import math
 import numpy as np
 import pytest
 
-from hertz_reference import SEED, cylinder_half_width, cylinder_pressure, estar, sphere
+from hertz_reference import SEED, cylinder_half_width, cylinder_pressure, estar, sphere, sphere_deflection
 
 HZ = sphere(**SEED)
 ESTAR = estar(SEED["E"], SEED["nu"])
@@ -98,6 +98,14 @@ def test_pressure_profile_follows_hertz(solve):
     outside = profile[profile["r"] > 1.1 * HZ.a]
     assert (outside["p_point"] == 0).all() and (outside["gap"] > 0).all()
     assert (outside["p_fe"].abs() < 5e-3 * HZ.p0).all()  # the L2 projection rings a little
+
+
+def test_surface_deflection_follows_hertz_inside_and_outside_the_contact(solve):
+    # out to 2.5 a, past the fine zone where the surface is sampled from its nodes
+    profile = solve().table("profile")
+    assert profile["r"].max() > 2.4 * HZ.a
+    hertz = np.array([sphere_deflection(r, HZ.a, SEED["d"], SEED["R"]) for r in profile["r"]])
+    assert np.abs(-profile["u_z"] - hertz).max() < 5e-3 * SEED["d"]
 
 
 def test_axis_stresses_match_hertz(solve):
