@@ -4,6 +4,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from scipy.integrate import quad
 from scipy.special import ellipe, ellipk
 
 
@@ -95,3 +96,92 @@ def ellipsoid_from_depth(d: float, E: float, nu: float, R_small: float, R_large:
     """The same at a given approach d: d grows as P^(2/3)."""
     unit = ellipsoid_from_load(1.0, E, nu, R_small, R_large)
     return ellipsoid_from_load((d / unit.d) ** 1.5, E, nu, R_small, R_large)
+
+
+# Indenters beyond the parabola, by Popov's method of dimensionality reduction (MDR), not by
+# Sneddon's integrals as the solver writes them: an axisymmetric profile f(r) maps to the 1D
+# profile g(x) = x int_0^x f'(r)/sqrt(x^2 - r^2) dr; then d = g(a), F = 2 E* int_0^a (d - g) dx
+# and p(r) = (E*/pi) int_r^a g'(x)/sqrt(x^2 - r^2) dx (Popov, Hess, Willert 2019, ch. 3).
+@dataclass(frozen=True)
+class Punch:
+    a: float
+    d: float
+    F: float
+
+
+def _mdr_g(fprime, x: float) -> float:
+    # r = x sin(t): int_0^x f'(r)/sqrt(x^2 - r^2) dr = int_0^(pi/2) f'(x sin t) dt, no singularity
+    return x * quad(lambda t: fprime(x * math.sin(t)), 0, math.pi / 2, limit=200)[0]
+
+
+def mdr_depth_force(fprime, a: float, Es: float) -> tuple[float, float]:
+    d = _mdr_g(fprime, a)
+    F = 2 * Es * quad(lambda x: d - _mdr_g(fprime, x), 0, a, limit=200)[0]
+    return d, F
+
+
+def mdr_pressure(fprime, r: float, a: float, Es: float, h: float = 1e-6) -> float:
+    """p(r) for r < a, with x = sqrt(r^2 + s^2) so that the integrand is smooth: g'(x)/x ds."""
+    def gprime(x):
+        return (_mdr_g(fprime, x * (1 + h)) - _mdr_g(fprime, x * (1 - h))) / (2 * h * x)
+    return Es / math.pi * quad(lambda s: gprime(math.hypot(r, s)) / math.hypot(r, s), 0,
+                               math.sqrt(a * a - r * r), limit=200)[0]
+
+
+def profile_slope(shape: str, R: float = 0.5, angle: float = 70.3, k: float = 1.5):
+    """f'(r) of the solver's shapes: sphere R - sqrt(R^2 - r^2), cone r cot(alpha), power
+    r^k/(k R^(k-1))."""
+    if shape == "sphere":
+        return lambda r: r / math.sqrt(R * R - r * r)
+    if shape == "cone":
+        return lambda r: 1 / math.tan(math.radians(angle))
+    if shape == "power":
+        return lambda r: (r / R) ** (k - 1)
+    raise ValueError(shape)
+
+
+def profile_from_depth(fprime, d: float, Es: float, a_max: float) -> Punch:
+    """a, d and F of the axisymmetric profile of slope fprime pressed to depth d (a by bisection
+    on d = g(a), below a_max)."""
+    lo, hi = 0.0, a_max
+    for _ in range(100):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if _mdr_g(fprime, mid) < d else (lo, mid)
+    a = 0.5 * (lo + hi)
+    return Punch(a, d, mdr_depth_force(fprime, a, Es)[1])
+
+
+def punch_from_depth(shape: str, d: float, E: float, nu: float, **geometry) -> Punch:
+    """profile_from_depth for the solver's named shapes."""
+    a_max = geometry.get("R", 0.5) * (0.999999 if shape == "sphere" else 100)
+    return profile_from_depth(profile_slope(shape, **geometry), d, estar(E, nu), a_max)
+
+
+def punch_from_load(shape: str, P: float, E: float, nu: float, **geometry) -> Punch:
+    Es, fp = estar(E, nu), profile_slope(shape, **geometry)
+    lo, hi = 0.0, geometry.get("R", 0.5) * (0.999999 if shape == "sphere" else 100)
+    for _ in range(100):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if mdr_depth_force(fp, mid, Es)[1] < P else (lo, mid)
+    a = 0.5 * (lo + hi)
+    return Punch(a, _mdr_g(fp, a), P)
+
+
+def flat_punch_edge_coefficient(P: float, a: float, plane: bool = False) -> float:
+    """lim p sqrt(a - r) at a flat punch's edge: p = P/(2 pi a sqrt(a^2 - r^2)) (axisymmetric),
+    P/(pi sqrt(a^2 - x^2)) per unit length (plane, Johnson 2.64)."""
+    return P / (math.pi * math.sqrt(2 * a)) if plane else P / (2 * math.pi * a * math.sqrt(2 * a))
+
+
+def plane_half_width(shape: str, P: float, E: float, nu: float, **geometry) -> float:
+    """Half-width of a plane (line) contact under P per unit length: P = (E*/2) int_-a^a x f'(x)/
+    sqrt(a^2 - x^2) dx (Johnson 2.48 with the pressure bounded at both edges), by bisection."""
+    Es, fp = estar(E, nu), profile_slope(shape, **geometry)
+
+    def load(a):  # x = a sin t
+        return Es * a * quad(lambda t: math.sin(t) * fp(a * math.sin(t)), 0, math.pi / 2)[0]
+    lo, hi = 0.0, geometry.get("R", 0.5) * (0.999999 if shape == "sphere" else 100)
+    for _ in range(100):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if load(mid) < P else (lo, mid)
+    return 0.5 * (lo + hi)
