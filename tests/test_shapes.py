@@ -9,8 +9,17 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from scipy.optimize import minimize_scalar
 
-from hertz_reference import (estar, flat_punch_edge_coefficient, mdr_pressure, plane_half_width,
-                             profile_from_depth, profile_slope, punch_from_depth, punch_from_load, sphere)
+from hertz_reference import (
+    estar,
+    flat_punch_edge_coefficient,
+    mdr_pressure,
+    plane_half_width,
+    profile_from_depth,
+    profile_slope,
+    punch_from_depth,
+    punch_from_load,
+    sphere,
+)
 
 E, NU, R = 10.0, 0.3, 0.5
 ESTAR = estar(E, NU)
