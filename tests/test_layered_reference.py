@@ -3,9 +3,9 @@ derivations of the surface compliance, the homogeneous body, the thick and thin 
 Gao, Chiu and Lee's first-order formula. A reference the solver's tests lean on must bite too."""
 import math
 
+import layered_reference as L
 import pytest
 
-import layered_reference as L
 from hertz_reference import estar, sphere
 
 E, NU, R = 10.0, 0.3, 0.5

@@ -2,12 +2,12 @@
 layered_reference.py (Perriot and Barthel's integral equation, accurate to about 1e-8)."""
 import math
 
+import layered_reference as L
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-import layered_reference as L
 from hertz_reference import sphere
 
 E, NU, R, D = 10.0, 0.3, 0.5, 0.02
