@@ -26,6 +26,36 @@ class Mutation:
 
 
 MUTATIONS = [
+    # indenter shapes (edp/lib/shape.idp, indenter.idp) and coated bodies
+    Mutation("the sphere solved as its parabola", "edp/lib/indenter.idp",
+             "x^2*sphereFactor/(sphereRadius + sqrt(max(sphereRadius^2 - x^2, 0.)))", "x^2*sphereFactor/(2*sphereRadius)",
+             ["tests/test_shapes.py::test_the_exact_sphere_matches_its_exact_solution"]),
+    Mutation("a cone's overlap radius off by its cotangent", "edp/lib/shape.idp",
+             "  if (shapeKind == CONE) return d/coneCot;", "  if (shapeKind == CONE) return d*coneCot;",
+             ["tests/test_shapes.py::test_cones_match_sneddon"]),
+    Mutation("no graded band at a punch's edge", "edp/lib/fe/mesh2d.idp",
+             "real punchGrading = 3;", "real punchGrading = 1;",
+             ["tests/test_shapes.py::test_the_punch_converges_at_its_order_despite_the_edge_singularity"]),
+    Mutation("p0 of a cusped tip at the second order", "edp/lib/steps/estimate.idp",
+             "  if (k == 0 && profileExponent < 2) return profileExponent - 1;", "",
+             ["tests/test_shapes.py::test_power_law_profiles_match_sneddon"]),
+    Mutation("an unsorted profile accepted", "edp/lib/shape.idp",
+             "    if (!(r[i] > r[i - 1])) bad =", "    if (false) bad =",
+             ["tests/test_shapes.py::test_bad_profiles_are_refused_with_the_reason"]),
+    Mutation("the substrate's modulus ignored", "edp/lib/fe/elasticity2d.idp",
+             "func muAt = y > -filmDepth ? lameMu : lameMu2;", "func muAt = lameMu;",
+             ["tests/test_layers.py::test_intermediate_films_match_the_layered_reference"]),
+    Mutation("the far boundary inside a stiff film's plate", "edp/lib/fe/mesh2d.idp",
+             "real plateReach = 400;", "real plateReach = 4;",
+             ["tests/test_layers.py::test_intermediate_films_match_the_layered_reference"]),
+    Mutation("a thin film meshed at the contact's spacing", "edp/lib/fe/mesh2d.idp",
+             "  real hTop = min(hFine, filmDepth);", "  real hTop = hFine;",
+             ["tests/test_layers.py::test_a_thin_layer_on_a_rigid_base",
+              "tests/test_layers.py::test_a_thin_compliant_film_is_the_substrate_s_half_space"]),
+    Mutation("the layered reference's mismatch coefficient off", "tests/layered_reference.py",
+             "    return (m * k2 - k1) / (1 + m * k2), (m - 1) / (m + k1)", "    return (m * k2 - k1) / (1 + m * k2), (m - 1) / (m + k2)",
+             ["tests/test_layered_reference.py"]),
+
     # the driver: tables, runs and sweeps
     Mutation("no repair of a line cut by a kill", "driver/table.py",
              'if not raw.endswith(b"\\n"):', "if False:",

@@ -90,7 +90,7 @@ def test_power_law_profiles_match_sneddon(solve, k):
         # a cusp at the tip (f'' infinite there): p0 converges as h^(k-1), and the run says how far
         # off it is (measured -1.9% at n = 16, estimated 11%: 'inaccurate', never 'converged')
         err = rel(s["p0_fe"], p0)
-        assert run.exit_code == 0 and err <= 0.01 or run.exit_code == 5 and s["est_err_p0"] >= 0.5 * err
+        assert run.exit_code == 5 and s["est_err_p0"] >= err, (err, s["est_err_p0"])
 
 
 @pytest.mark.parametrize("method,tol", [("newton", 3e-3), ("lagrange", 1e-3)])
