@@ -9,6 +9,7 @@ old chart whole.
 from __future__ import annotations
 
 import math
+import sys
 from pathlib import Path
 
 import matplotlib
@@ -19,7 +20,7 @@ import matplotlib.ticker  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
-from driver import files  # noqa: E402
+from driver import files, layout  # noqa: E402
 from driver.errors import ReportError  # noqa: E402
 
 ERRORS = {"err_p0": "p0", "err_F": "F", "err_a": "a"}
@@ -60,6 +61,12 @@ def sphere_cases(tables: dict[str, pd.DataFrame]) -> pd.DataFrame:
     frames = [t for name, t in tables.items() if len(t) and name != "figures"]
     rows = pd.concat(need(frames, "no study rows"), ignore_index=True)
     sphere = (rows["model"] == "axi") | ((rows["model"] == "3d") & (rows["Rx"] == rows["Ry"]))
+    # Hertz's paraboloid on a homogeneous body: the other shapes and the coated bodies have their own charts
+    if "shape" in rows:
+        sphere &= rows["shape"].fillna("parabola").eq("parabola")
+    if "t" in rows:
+        sphere &= rows["t"].isna()
+    sphere &= rows["Rx"] == rows["Ry"]
     rows = rows[(rows["status"] == "converged") & sphere].drop_duplicates("case_id")
     return rows.assign(max_err=max_error(rows))
 
@@ -529,4 +536,197 @@ def calibration(frame: pd.DataFrame, path: Path) -> Path:
         ax.grid(True, alpha=0.3)
         ax.legend(fontsize=7)
     fig.suptitle(f"Error estimate calibration: {len(df)} cases with closed forms ({_scene(df) or 'many scenes'})")
+    return _save(fig, path)
+
+
+SHAPE_COLORS = {"cone 70.3": "#c62828", "cone 60": "#ef9a9a", "punch": "#6a1b9a", "power k = 3": "#2e7d32",
+                "power k = 1.5": "#a5d6a7", "sphere": "#1565c0"}
+
+
+def shape_label(row: pd.Series) -> str:
+    """A shape as the charts name it: cone 70.3, power k = 3, punch, sphere, parabola."""
+    if row["shape"] == "cone":
+        return f"cone {row['angle']:g}"
+    if row["shape"] == "power":
+        return f"power k = {row['k']:g}"
+    return str(row["shape"])
+
+
+def shapes(frame: pd.DataFrame, path: Path) -> Path:
+    """Left: the exact sphere against Hertz's parabola of the same radius over d/R. Middle:
+    F against d for each shape (markers FE, lines Sneddon). Right: each shape's error against
+    n (exact contact). Rows are chosen by their columns (a case shared by two series is one row)."""
+    df = need(frame[frame["status"].isin(["converged", "inaccurate"])], "no shapes rows").copy()
+    df["label"] = df.apply(shape_label, axis=1)
+    default = df[(df["method"] == "newton") & (df["n"] == 16)]
+    sph = need(default[default["label"] == "sphere"], "no sphere rows").set_index("d").sort_index()
+    par = need(default[default["label"] == "parabola"], "no parabola rows").set_index("d").sort_index()
+    common = sph.index.intersection(par.index)
+    ratio = common / sph.loc[common, "R"]
+    fig, axes = plt.subplots(1, 3, figsize=(16, 5.2))
+    ax = axes[0]
+    for q, color in (("F", QUANTITY_COLORS[1]), ("a", QUANTITY_COLORS[2])):
+        ax.plot(ratio, (sph.loc[common, f"{q}_fe"] / par.loc[common, f"{q}_fe"] - 1) * 100, "o", color=color,
+                label=f"{q}: FE sphere / FE parabola - 1")
+        ax.plot(ratio, (sph.loc[common, f"{q}_hertz"] / par.loc[common, f"{q}_hertz"] - 1) * 100, "-", color=color,
+                lw=1, label=f"{q}: Sneddon's sphere / Hertz - 1")
+    x = np.linspace(0, ratio.max(), 50)
+    ax.plot(x, -x / 10 * 100, "k:", lw=1, label="-(d/R)/10, -(d/R)/6 (first order)")
+    ax.plot(x, -x / 6 * 100, "k:", lw=1)
+    ax.set(xlabel="depth d / R", ylabel="sphere against parabola [%]",
+           title="The exact sphere against Hertz's parabola (same R, same d)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    ax = axes[1]
+    for name, g in default[default["label"] != "parabola"].groupby("label"):
+        g = g.sort_values("d")
+        if len(g) < 3:
+            continue
+        color = SHAPE_COLORS.get(name, "grey")
+        ax.plot(g["d"], g["F_hertz"], "-", color=color, lw=1)
+        slope = np.polyfit(np.log(g["d"]), np.log(g["F_fe"]), 1)[0]
+        ax.plot(g["d"], g["F_fe"], "o", color=color, label=f"{name}: slope {slope:.3f}")
+    ax.plot([], [], "k-", lw=1, label="Sneddon (lines)")
+    ax.set(xscale="log", yscale="log", xlabel="depth d", ylabel="force F",
+           title="F(d): cone 2, punch 1, power k: 1 + 1/k, sphere 1.5 (small d)")
+    ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    ax = axes[2]
+    errors = {"F": "err_F", "a": "err_a", "K": "err_K", "p0": "err_p0"}
+    for name, g in df[df["method"] == "lagrange"].groupby("label"):
+        g = g.sort_values("n")
+        cols = [c for c in errors.values() if g[c].notna().any()]
+        ax.plot(g["n"], g[cols].abs().max(axis=1) * 100, "o-", color=SHAPE_COLORS.get(name, "grey"),
+                label=f"{name} ({', '.join(k for k, c in errors.items() if c in cols)})")
+    ax.set(xscale="log", yscale="log", xlabel="elements per contact radius n",
+           ylabel="max |relative error| against Sneddon [%]",
+           title="Convergence (lagrange P2; a cone at any angle is one problem)")
+    ns = sorted(df.loc[df["method"] == "lagrange", "n"].unique())
+    ax.set_xticks(ns, [f"{n:g}" for n in ns])
+    ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    return _save(fig, path)
+
+
+def _layered_reference():
+    """tests/layered_reference.py (Perriot and Barthel's integral equation), when the
+    package runs from a checkout; None otherwise (the chart then draws the limits alone)."""
+    path = layout.TESTS_DIR / "layered_reference.py"
+    if not path.is_file():
+        return None
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("layered_reference", path)
+    if spec is None or spec.loader is None:
+        return None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules.setdefault("layered_reference", module)  # its dataclasses look their module up
+    spec.loader.exec_module(module)
+    return module
+
+
+def layers(frame: pd.DataFrame, profiles: pd.DataFrame, axis: pd.DataFrame, path: Path) -> Path:
+    """The coated body: effective modulus over a/t, the half-spaces' under-modelling, the
+    pressure profiles and the stresses on the axis of a soft and a stiff film."""
+    df = need(frame[frame["status"].isin(["converged", "inaccurate"])], "no layers rows").copy()
+    estar1 = df["E"] / (1 - df["nu"] ** 2)
+    df["E_eff"] = df["S_fe"] / (2 * df["a_fe"]) / estar1
+    df["a_over_t"] = df["a_fe"] / df["t"]
+    reference = _layered_reference()
+    fig, axes = plt.subplots(2, 2, figsize=(13, 10))
+    series = [v for v in dict.fromkeys(df["variant"]) if not v.startswith("profile")]
+    colors = dict(zip(series, ["#0d47a1", "#42a5f5", "#ef6c00", "#b71c1c", "#212121"]))
+    ax = axes[0, 0]
+    for variant in series:
+        g = df[df["variant"] == variant].sort_values("a_over_t")
+        color = colors[variant]
+        ax.plot(g["a_over_t"], g["E_eff"], "o", color=color, label=f"{variant} (FE)")
+        row = g.iloc[0]
+        if reference is not None:
+            coating = reference.Coating(E1=row["E"], nu1=row["nu"], t=1.0, E2=row["E2"],
+                                        nu2=row["nu2"] if np.isfinite(row["nu2"]) else 0.3)
+            x = np.logspace(np.log10(g["a_over_t"].min()) - 0.2, np.log10(g["a_over_t"].max()) + 0.2, 25)
+            ax.plot(x, [reference.effective_modulus(coating, ax_) / estar1.iloc[0] for ax_ in x], "-",
+                    color=color, lw=1)
+        if variant != "rigid base":
+            ax.axhline(row["E2"] / (1 - row["nu2"] ** 2) / estar1.iloc[0], color=color, lw=0.8, ls="--")
+    ax.axhline(1, color="grey", lw=0.8, ls="--")
+    ax.plot([], [], "k--", lw=0.8, label="half-space limits: film (1), substrate (E2*/E*)")
+    if reference is not None:
+        ax.plot([], [], "k-", lw=1, label="Perriot & Barthel (2004) integral equation (tests/layered_reference.py)")
+    ax.set(xscale="log", yscale="log", xlabel="contact radius / film thickness a/t",
+           ylabel="effective modulus E_eff* / E_film*  (S = 2 E_eff* a)",
+           title="Effective modulus of a coated body (sphere, exact contact)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    ax = axes[0, 1]
+    for variant in series:
+        g = df[df["variant"] == variant].sort_values("a_over_t")
+        ax.plot(g["a_over_t"], g["F_fe"] / g["hs_film_F"], "o-", color=colors[variant], label=variant)
+    ax.axhspan(0.99, 1.01, color="grey", alpha=0.2, label="the film's Hertz within 1%")
+    ax.set(xscale="log", yscale="log", xlabel="a/t", ylabel="F (coated, FE) / F (film's Hertz, same d)",
+           title="Where the film's half-space model stops being enough")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    pcases = df[df["variant"].str.startswith("profile")]
+    for variant, color in zip(sorted(pcases["variant"]), ("#1565c0", "#c62828")):
+        case = pcases[pcases["variant"] == variant].iloc[0]
+        label = f"{variant[8:]}: t = {case['a_over_t'] ** -1:.2g} a, E2/E = {case['E2'] / case['E']:g}"
+        prof = profiles[profiles["case_id"] == case["case_id"]] if len(profiles) else profiles
+        if len(prof):
+            axes[1, 0].plot(prof["r"] / case["a_fe"], prof["p_fe"] / case["p0_fe"], "-", color=color, label=label)
+        data = axis[axis["case_id"] == case["case_id"]] if len(axis) else axis
+        if len(data):
+            z = data["depth"] / case["a_fe"]
+            axes[1, 1].plot(data["sigma_z"] / case["p0_fe"], z, "-", color=color, label=f"sigma_z, {label}")
+            axes[1, 1].plot(data["tau_max"] / case["p0_fe"], z, "--", color=color, label=f"tau_max, {label}")
+            axes[1, 1].axhline(case["t"] / case["a_fe"], color=color, lw=0.8, ls=":")
+    axes[1, 0].set(xlim=(0, 1.5), xlabel="r / a", ylabel="p / p0 (each its own)",
+                   title="Surface pressure: a soft film on a stiff base, a stiff film on a soft one")
+    axes[1, 1].invert_yaxis()
+    axes[1, 1].set(xlabel="stress / p0", ylabel="depth z / a (dotted: the interface)",
+                   title="Stresses on the axis, through the interface")
+    for ax in axes[1]:
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=7)
+    return _save(fig, path)
+
+
+def loading(frame: pd.DataFrame, path: Path) -> Path:
+    """Loading curves: F(d) with Hertz's lines, S(a) with S = 2E*a, the cylinder's a(P)."""
+    df = need(frame[frame["status"] == "converged"], "no loading rows")
+    fig, axes = plt.subplots(1, 3, figsize=(16, 5.2))
+    styles = {"sphere": ("#1565c0", "o"), "exact sphere": ("#6a1b9a", "s"), "ellipsoid Ry/Rx = 2": ("#2e7d32", "D")}
+    for variant, (color, marker) in styles.items():
+        g = df[df["variant"] == variant].sort_values("d_fe")
+        if not len(g):
+            continue
+        hollow = dict(mfc="none", ms=10, mew=1.5) if variant == "sphere" else {}
+        axes[0].plot(g["d_fe"], g["F_fe"], marker, color=color, label=f"{variant}, loading (-d)", **hollow)
+        axes[0].plot(g["d_fe"], g["F_hertz"], "-", color=color, lw=1)
+        axes[1].plot(g["a_fe"], g["S_fe"], marker, color=color, label=f"{variant}: dF/dd from the linearization",
+                     **hollow)
+        axes[1].plot(g["a_fe"], g["S_hertz"], "-", color=color, lw=1)
+    under = df[df["variant"] == "sphere under load"]
+    axes[0].plot(under["d_fe"], under["F_fe"], "x", color="k", ms=10, mew=2,
+                 label="sphere under load (-P): the same curve")
+    axes[0].plot([], [], "k-", lw=1, label="Hertz (exact sphere: Sneddon)")
+    axes[0].set(xscale="log", yscale="log", xlabel="depth d", ylabel="force F", title="F(d): slope 3/2")
+    axes[1].plot([], [], "k-", lw=1, label="2 E* a (ellipsoid: 3F/2d)")
+    axes[1].set(xscale="log", yscale="log", xlabel="contact radius a (ellipsoid: along x)",
+                ylabel="contact stiffness S = dF/dd", title="Contact stiffness")
+    cyl = df[df["variant"] == "cylinder"].sort_values("F_fe")
+    if len(cyl):
+        axes[2].plot(cyl["F_fe"], cyl["a_fe"], "o", color="#c62828", label="cylinder half-width a (FE)")
+        axes[2].plot(cyl["F_fe"], cyl["a_hertz"], "-", color="#c62828", lw=1, label="sqrt(4PR/(pi E*))")
+        axes[2].plot(cyl["F_fe"], cyl["p0_fe"], "s", color="#ef6c00", label="cylinder p0 (FE)")
+        axes[2].plot(cyl["F_fe"], cyl["p0_hertz"], "-", color="#ef6c00", lw=1, label="2P/(pi a)")
+    axes[2].set(xscale="log", yscale="log", xlabel="load per unit length P", ylabel="a, p0",
+                title="The cylinder, by its load (-P)")
+    for ax in axes:
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        ax.yaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
     return _save(fig, path)

@@ -79,6 +79,22 @@ def _fmt_3d(frame: pd.DataFrame) -> str:
 
 
 CAPTIONS = {
+    "shapes": "Left: the exact spherical cap against Hertz's parabola of the same radius at the same depth: "
+              "the FE runs (markers) and Sneddon's exact sphere against Hertz (lines). Middle: F(d) of each "
+              "indenter, FE (markers) and Sneddon (lines), with the fitted slopes. Right: each shape's largest "
+              "error against Sneddon over n (exact contact); the punch is measured on F and its edge factor K, "
+              "the cone on F and a (its pressure is singular at the tip).",
+    "layers": "A film (E, nu) bonded to a substrate (E2, nu2) or a rigid base, sphere at d = 0.02, exact "
+              "contact. Top left: the effective modulus from the contact stiffness against a/t, with the two "
+              "half-space limits and Perriot and Barthel's integral equation (tests/layered_reference.py, "
+              "accurate to about 1e-8; the tests check every quantity against it). Top right: the coated F "
+              "over the film's own Hertz at the same depth (the grey band is 1%). Bottom: pressure and axis "
+              "stresses of a soft film on a stiff substrate and a stiff film on a soft one.",
+    "loading": "Loading curves by -d (markers) against Hertz (lines), and two of the sphere's points again "
+               "by their load (-P, crosses): an elastic frictionless contact unloads along its loading curve. "
+               "Middle: the contact stiffness from the converged linearization against 2E*a. Right: the "
+               "cylinder, by its load per unit length: a and p0 against Hertz's relations (its depth depends on "
+               "the domain). Each point is its own run, started from its own coarse level.",
     "accuracy_vs_speed": "Max relative error over p0, F and a against the wall time the driver measured, "
                          "every converged sphere case of every study (open markers: the sphere solved in "
                          "3D); the black line is the Pareto front (no case is both faster and more "
@@ -177,6 +193,10 @@ CHARTS: dict[str, Chart] = {
     "units": lambda t, r, png: plots.units_check(_study(t, "units"), png),
     "calibration": lambda t, r, png: plots.calibration(_study(t, "calibration"), png),
     "over_modelling": lambda t, r, png: plots.over_modelling(_study(t, "3d"), png),
+    "shapes": lambda t, r, png: plots.shapes(_study(t, "shapes"), png),
+    "layers": lambda t, r, png: plots.layers(_study(t, "layers"), _kept(r, "layers", "profile.csv"),
+                                             _kept(r, "layers", "axis.csv"), png),
+    "loading": lambda t, r, png: plots.loading(_study(t, "loading"), png),
     "ellipses": lambda t, r, png: plots.ellipses(_study(t, "3d"), _kept(r, "3d", "outline.csv"),
                                                  _kept(r, "3d", "profile.csv"), _kept(r, "3d", "profile_y.csv"), png),
 }

@@ -50,22 +50,25 @@ def statuses() -> list[str]:
     return list(freefem.exits()) + DRIVER_STATUSES
 
 
-def answered(row: Mapping) -> bool:
-    """A converged or inaccurate row with finite p0, F and a."""
-    if row.get("status") not in ANSWERED:
-        return False
+def missing_answer(row: Mapping) -> str | None:
+    """The first answer column (ANSWER_COLUMNS) of a row that is not a finite number, or None."""
     for column in ANSWER_COLUMNS:
         if column == "p0_fe" and row.get("shape") in SINGULAR_PRESSURE_SHAPES:
             continue
         value = row.get(column)
         if isinstance(value, str):
             try:
-                value = float(value)
+                value = float(value) if value else math.nan
             except ValueError:
-                return False
+                return column
         if not isinstance(value, (int, float)) or not math.isfinite(value):
-            return False
-    return True
+            return column
+    return None
+
+
+def answered(row: Mapping) -> bool:
+    """A converged or inaccurate row with finite p0 (unless singular), F and a."""
+    return row.get("status") in ANSWERED and missing_answer(row) is None
 
 
 def exit_code_of(row: Mapping) -> int:

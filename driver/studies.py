@@ -233,6 +233,68 @@ def study_3d(quick: bool) -> list[Case]:
     return [c.labelled(c.variant, c.expect_converged and c.get("n") >= 5) for c in cases]
 
 
+def shapes_study(quick: bool) -> list[Case]:
+    """Indenters beyond the parabola against Sneddon: the exact sphere beside Hertz's
+    parabola over d/R, F(d) of each shape over a decade of depths, and each shape's
+    convergence in n."""
+    ratios = [0.01, 0.1] if quick else [0.005, 0.01, 0.02, 0.05, 0.1, 0.2, 0.3]
+    cases = labelled(grid(Case.of(shape="sphere"), d=[round(0.5 * r, 6) for r in ratios]), lambda c: "sphere over d/R")
+    cases += labelled(grid(Case.of(R=0.5), d=[round(0.5 * r, 6) for r in ratios]), lambda c: "parabola over d/R")
+    depths = [0.005, 0.02] if quick else [0.0025, 0.005, 0.01, 0.02, 0.04]
+    shapes = {"cone 70.3": Case.of(shape="cone"), "punch": Case.of(shape="punch"),
+              "power k = 3": Case.of(shape="power", k=3), "sphere": Case.of(shape="sphere")}
+    for name, base in shapes.items():
+        cases += [c.labelled(f"F(d) {name}") for c in grid(base, d=depths)]
+    if not quick:
+        # (a cone at another angle is the same problem in the solver's units: one cone)
+        shapes.update({"power k = 1.5": Case.of(shape="power", k=1.5)})
+        for name, base in shapes.items():
+            # a cusped tip's p0 converges slowly and says so (inaccurate) at coarse n
+            cases += [c.labelled(f"n {name}", name != "power k = 1.5")
+                      for c in grid(base.with_(method="lagrange"), n=[8, 16, 32])]
+    return cases
+
+
+def layers_study(quick: bool) -> list[Case]:
+    """Coated bodies: the effective modulus over a/t for substrates 100 times softer to
+    100 times stiffer and a rigid base, and the two pressure profiles of a stiff film on a
+    soft substrate and a soft film on a stiff one."""
+    ratios = [0.1, 10.0] if quick else [0.01, 0.1, 10.0, 100.0]
+    thickness = [0.1, 1.0] if quick else [0.03, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0]  # t/a (a = 0.1)
+    # exact contact: a thin film on a stiff base is far stiffer than E*/h, against which
+    # the default penalty is scaled (a penalty run says so: inaccurate)
+    films = [round(0.1 * x, 6) for x in thickness]
+    cases = []
+    for r in ratios:
+        cases += [c.labelled(f"E2/E = {r:g}") for c in grid(Case.of(E2=10.0 * r, method="lagrange"), t=films)]
+    cases += labelled(grid(Case.of(E2=math.inf, method="lagrange"), t=films), lambda c: "rigid base")
+    cases += [Case.of(t=0.03, E2=1000.0, method="lagrange").labelled("profile soft film"),
+              Case.of(t=0.03, E2=0.1, method="lagrange").labelled("profile stiff film")]
+    return cases
+
+
+def loading_study(quick: bool) -> list[Case]:
+    """Loading curves: F against d for the sphere, the cylinder (by its load per unit
+    length) and an ellipsoid, from 1e-3 to 1e-1 of the radius, with the contact stiffness
+    S = dF/dd; a point of each curve again under load control (the unloading leg of an
+    elastic frictionless body is the loading one)."""
+    fractions = [1e-3, 1e-2, 1e-1] if quick else [1e-3, 3e-3, 1e-2, 3e-2, 1e-1]
+    depths = [round(0.5 * f, 8) for f in fractions]
+    cases = labelled(grid(Case(), d=depths), lambda c: "sphere")
+    cases += labelled(grid(Case.of(shape="sphere"), d=depths), lambda c: "exact sphere")
+    # the cylinder's depth depends on the domain: its curve is a(P) and p0(P)
+    loads = [0.002, 0.02, 0.2] if quick else [0.002, 0.006, 0.02, 0.06, 0.2]
+    cases += labelled(grid(Case.of(Ry=math.inf, Rx=0.5), P=loads), lambda c: "cylinder")
+    if not quick:
+        cases += labelled(grid(Case.of(Rx=0.5, Ry=1.0), d=depths), lambda c: "ellipsoid Ry/Rx = 2")
+    # the loads of the sphere's curve at 1e-2 R and 1e-1 R (Hertz's), given: the same points
+    for f in (1e-2, 1e-1):
+        d = 0.5 * f
+        P = 4 / 3 * (10 / (1 - 0.3**2)) * math.sqrt(0.5 * d) * d
+        cases.append(Case.of(P=float(f"{P:.6g}")).labelled("sphere under load"))
+    return cases
+
+
 @dataclass(frozen=True)
 class Study:
     name: str
@@ -252,6 +314,9 @@ STUDIES = {s.name: s for s in [
     Study("figures", figures_study, keep=("profile.csv", "axis.csv")),
     Study("calibration", calibration_study),
     Study("3d", study_3d, keep=("profile.csv", "profile_y.csv", "outline.csv")),
+    Study("shapes", shapes_study, keep=("profile.csv",)),
+    Study("layers", layers_study, keep=("profile.csv", "axis.csv")),
+    Study("loading", loading_study),
 ]}
 
 

@@ -128,10 +128,9 @@ def _row_problem(fields: list[str], columns: list[str], index: dict[str, int], s
             return f"{col} is not a number: {value!r}"
     if status in schema.ANSWERED:
         # a hand-edited row must not pass for a finished case without its answer
-        for col in schema.ANSWER_COLUMNS:
-            value = fields[index[col]]
-            if value == "" or not math.isfinite(float(value)):
-                return f"{status} without a finite {col}"
+        missing = schema.missing_answer(dict(zip(columns, fields)))
+        if missing:
+            return f"{status} without a finite {missing}"
     return ""
 
 

@@ -28,7 +28,8 @@ class Mutation:
 MUTATIONS = [
     # indenter shapes (edp/lib/shape.idp, indenter.idp) and coated bodies
     Mutation("the sphere solved as its parabola", "edp/lib/indenter.idp",
-             "x^2*sphereFactor/(sphereRadius + sqrt(max(sphereRadius^2 - x^2, 0.)))", "x^2*sphereFactor/(2*sphereRadius)",
+             "x^2*sphereFactor/(sphereRadius + sqrt(max(sphereRadius^2 - x^2, 0.)))",
+             "x^2*sphereFactor/(2*sphereRadius)",
              ["tests/test_shapes.py::test_the_exact_sphere_matches_its_exact_solution"]),
     Mutation("a cone's overlap radius off by its cotangent", "edp/lib/shape.idp",
              "  if (shapeKind == CONE) return d/coneCot;", "  if (shapeKind == CONE) return d*coneCot;",
@@ -53,7 +54,8 @@ MUTATIONS = [
              ["tests/test_layers.py::test_a_thin_layer_on_a_rigid_base",
               "tests/test_layers.py::test_a_thin_compliant_film_is_the_substrate_s_half_space"]),
     Mutation("the layered reference's mismatch coefficient off", "tests/layered_reference.py",
-             "    return (m * k2 - k1) / (1 + m * k2), (m - 1) / (m + k1)", "    return (m * k2 - k1) / (1 + m * k2), (m - 1) / (m + k2)",
+             "    return (m * k2 - k1) / (1 + m * k2), (m - 1) / (m + k1)",
+             "    return (m * k2 - k1) / (1 + m * k2), (m - 1) / (m + k2)",
              ["tests/test_layered_reference.py"]),
 
     # the driver: tables, runs and sweeps

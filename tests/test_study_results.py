@@ -155,3 +155,46 @@ def test_the_quick_3d_cases_choose_3d_and_stay_near_hertz(studies):
     # n = 3 is below the default: within 3% (measured 0.4% to 2.1%; TetGen's meshes are not
     # nested, so a 3D error moves with the mesh), whatever the estimate says
     assert (df[["err_p0", "err_F", "err_a", "err_b"]].abs().max(axis=1) < 0.03).all()
+
+
+def test_the_shapes_study_keeps_sneddon_s_laws(studies):
+    df = rows(studies["shapes"])
+    default = df[(df["method"] == "newton") & (df["n"] == 16)]
+    # F ~ d^(1 + 1/k): cone 2, punch 1, power k = 3: 4/3 (FE values, two depths a factor 4 apart)
+    for shape, k, expected in (("cone", None, 2.0), ("punch", None, 1.0), ("power", 3.0, 4 / 3)):
+        g = default[(default["shape"] == shape) & ((default["k"] == k) if k else True)]
+        assert len(g) >= 2 and slope(g["d"], g["F_fe"]) == pytest.approx(expected, abs=2e-3), shape
+    # the exact sphere against the parabola of the same radius: F lower by (d/R)/10 to first order
+    sph = default[default["shape"] == "sphere"].set_index("d")
+    par = default[default["shape"] == "parabola"].set_index("d")
+    for d in sph.index.intersection(par.index):
+        assert sph.loc[d, "F_fe"] / par.loc[d, "F_fe"] - 1 == pytest.approx(-d / 0.5 / 10, abs=3e-4), d
+
+
+def test_the_layers_study_matches_the_layered_reference(studies):
+    import layered_reference as L
+    df = rows(studies["layers"], status=("converged",))
+    assert len(df) >= 6
+    for _, r in df.iterrows():
+        nu2 = r["nu2"] if np.isfinite(r["nu2"]) else 0.3
+        c = L.Coating(E1=r["E"], nu1=r["nu"], t=r["t"], E2=r["E2"], nu2=nu2)
+        ref = L.sphere_from_depth(c, r["R"], r["d"])
+        # exact contact at n = 16: measured within 0.2% on F and 0.15% on a
+        case = r["case_id"]
+        assert r["F_fe"] == pytest.approx(ref.F, rel=3e-3) and r["a_fe"] == pytest.approx(ref.a, rel=3e-3), case
+        # S = 2 E_eff* a, the punch's effective modulus at the same contact radius (the linearization
+        # closes the discrete contact set, whose edge is quantized): measured within 1.1% (films on
+        # stiff bases, a/t from 5 to 13), 0.3% where a/t is below 3
+        S = 2 * L.effective_modulus(c, r["a_fe"]) * r["a_fe"]
+        assert r["S_fe"] == pytest.approx(S, rel=1.5e-2), case
+
+
+def test_the_loading_study_keeps_the_3_2_law_and_one_curve_both_ways(studies):
+    df = rows(studies["loading"], status=("converged",))
+    sphere = df[df["variant"] == "sphere"].sort_values("d")
+    assert slope(sphere["d"], sphere["F_fe"]) == pytest.approx(1.5, abs=1e-4)
+    assert np.allclose(sphere["S_fe"], 2 * sphere["E"] / (1 - sphere["nu"] ** 2) * sphere["a_fe"], rtol=2e-3)
+    # a point again under its load: the same depth and contact radius
+    for _, r in df[df["variant"] == "sphere under load"].iterrows():
+        same = sphere.iloc[(sphere["F_fe"] - r["F_fe"]).abs().argmin()]
+        assert r["d_fe"] == pytest.approx(same["d"], rel=3e-4) and r["a_fe"] == pytest.approx(same["a_fe"], rel=3e-4)
