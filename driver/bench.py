@@ -12,6 +12,7 @@ transfer of the row and files) and in batches that keep both workers busy
 from __future__ import annotations
 
 import json
+import math
 import shutil
 import statistics
 import subprocess
@@ -40,10 +41,19 @@ CONFIGS = {
     "-accuracy 0.01": Case.of(accuracy=0.01),
     "SI steel ball": Case.of(E=210e9, R=0.01, d=1e-5),
     "plane (cylinder)": Case.of(model="plane"),
+    "load control (-P, the seed's Hertz force)": Case.of(P=0.0293040293),
+    "exact sphere (-shape sphere)": Case.of(shape="sphere"),
+    "cone 70.3": Case.of(shape="cone"),
+    "flat punch": Case.of(shape="punch"),
+    "coated: t = a, E2 = 10 E": Case.of(t=0.1, E2=100.0),
+    "coated: t = a/100 on a rigid base (lagrange)": Case.of(t=0.001, E2=math.inf, method="lagrange"),
     "3d sphere (P2, n=5)": Case.of(model="3d"),
     "3d ellipsoid Ry/Rx=4 (P2, n=5)": Case.of(Rx=0.5, Ry=2.0),
 }
 FENICS = layout.PACKAGE_DIR.parent / "bench" / "fenics_peer.py"  # in a checkout only
+TAMAAS = layout.PACKAGE_DIR.parent / "bench" / "tamaas_peer.py"
+TAMAAS_PYTHON = layout.PACKAGE_DIR.parent / ".venv-peers" / "bin" / "python"  # driver/setup.sh --peers
+TAMAAS_GRIDS = (64, 128)  # dcfft on 4 a: 16 and 32 cells per contact radius
 DEBIAN_PYTHON = "/usr/bin/python3"  # python3-dolfin is a Debian package
 
 
@@ -61,6 +71,20 @@ def fenics_run() -> tuple[float, dict] | None:
         return None
     start = time.perf_counter()
     proc = subprocess.run([DEBIAN_PYTHON, str(FENICS)], capture_output=True, text=True, check=False)
+    wall = time.perf_counter() - start
+    if proc.returncode != 0:
+        return None
+    return wall, json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+def tamaas_run(n: int) -> tuple[float, dict] | None:
+    """The Tamaas peer (bench/tamaas_peer.py, FFT boundary elements on an isolated
+    half-space: dcfft), if driver/setup.sh --peers installed it."""
+    if not TAMAAS.exists() or not TAMAAS_PYTHON.exists():
+        return None
+    start = time.perf_counter()
+    proc = subprocess.run([str(TAMAAS_PYTHON), str(TAMAAS), "--operator", "dcfft", "--N", str(n)],
+                          capture_output=True, text=True, check=False)
     wall = time.perf_counter() - start
     if proc.returncode != 0:
         return None
@@ -110,6 +134,8 @@ def bench(out: Path, repeat: int = 5) -> int:
     walls: dict[str, list[float]] = {name: [] for name in CONFIGS}
     summaries: dict[str, dict] = {}
     fenics_walls, fenics_row = [], None
+    tamaas_walls: dict[int, list[float]] = {}
+    tamaas_rows: dict[int, dict] = {}
     with tempfile.TemporaryDirectory() as tmp:
         root = Path(tmp)
         for _ in range(repeat):
@@ -120,6 +146,11 @@ def bench(out: Path, repeat: int = 5) -> int:
             if peer is not None:
                 fenics_walls.append(peer[0])
                 fenics_row = peer[1]
+            for n in TAMAAS_GRIDS:
+                tamaas = tamaas_run(n)
+                if tamaas is not None:
+                    tamaas_walls.setdefault(n, []).append(tamaas[0])
+                    tamaas_rows[n] = tamaas[1]
         # driver overhead: the default case through run_case and directly
         direct, through = [], []
         for _ in range(repeat):
@@ -167,6 +198,12 @@ def bench(out: Path, repeat: int = 5) -> int:
                      "status": "converged", "n": fenics_row["n"], "ndof": fenics_row["ndof"],
                      "iterations": fenics_row["newton_iterations"],
                      "max_abs_err": max(abs(fenics_row[k]) for k in ("err_p0", "err_F", "err_a"))})
+    for n, peer_row in tamaas_rows.items():
+        rows.append({"configuration": f"Tamaas peer (dcfft, N={n}, {peer_row['cells_per_a']:g} cells per a)",
+                     "wall_median_s": statistics.median(tamaas_walls[n]), "wall_min_s": min(tamaas_walls[n]),
+                     "status": "converged" if peer_row["converged"] else "not converged",
+                     "iterations": peer_row["iterations"],
+                     "max_abs_err": max(abs(peer_row[k]) for k in ("err_p0", "err_F", "err_a"))})
     if dask_times is not None:
         for name, values in dask_times.items():
             rows.append({"configuration": f"default per case, 2 workers, {name}",
@@ -183,6 +220,12 @@ def bench(out: Path, repeat: int = 5) -> int:
     ratio16 = by["lagrange (P2, n=16)"] / by["default (newton P2, n=16)"]
     ratio32 = by["lagrange P2, n=32"] / by["newton P2, n=32"]
     print(f"lagrange / newton wall time: n=16 {ratio16:.2f}, n=32 {ratio32:.2f}")
+    default = by["default (newton P2, n=16)"]
+    for name in ("load control (-P, the seed's Hertz force)", "exact sphere (-shape sphere)", "cone 70.3",
+                 "flat punch", "coated: t = a, E2 = 10 E"):
+        print(f"{name} / default wall time: {by[name] / default:.2f}")
+    for peer in [c for c in by.index if c.startswith("Tamaas")]:
+        print(f"{peer} / default: {by[peer] / default:.2f}")
     if fenics_row is not None:
         peer = [c for c in by.index if c.startswith("FEniCS")][0]
         print(f"FEniCS peer / -accuracy 0.001: {by[peer] / by['-accuracy 0.001']:.1f}x")

@@ -3,7 +3,8 @@
 # the Debian package's plugin/include paths, and this project as a Python
 # package (pip install -e ".[test,lint]": the `hertz` command, the test
 # tools, and Dask, so that the same setup makes a machine a sweep worker).
-# With --peers, also the peer codes the benchmark compares against.
+# With --peers, also the peer codes the benchmark compares against: FEniCS
+# from Debian packages, Tamaas from PyPI into <checkout>/.venv-peers.
 # Idempotent; quick when everything is already there.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -18,6 +19,19 @@ if [ "${1:-}" = "--peers" ]; then
   if ! /usr/bin/python3 -c "import dolfin, gmsh" 2>/dev/null; then
     echo "setup: installing FEniCS 2019 and gmsh (python3-dolfin, python3-gmsh) for the peer benchmark"
     apt_install python3-dolfin python3-gmsh
+  fi
+  # Tamaas (FFT boundary elements, bench/tamaas_peer.py) comes from PyPI as a
+  # wheel: into a virtual environment of its own, not into either system Python.
+  # 2.9 or later: the version whose operators bench/tamaas_peer.py checked against Hertz.
+  venv="$root/.venv-peers"
+  if ! "$venv/bin/python" -c "import tamaas, numpy" 2>/dev/null; then
+    echo "setup: installing Tamaas (pip install tamaas) into $venv for the peer benchmark"
+    py="${PYTHON:-python3}"
+    if [ ! -x "$venv/bin/python" ] && ! "$py" -m venv --clear "$venv" 2>/dev/null; then
+      apt_install python3-venv  # Debian's python3 has no venv/ensurepip without it
+      "$py" -m venv --clear "$venv"
+    fi
+    "$venv/bin/python" -m pip install -q --disable-pip-version-check "tamaas>=2.9" numpy
   fi
   exit 0
 fi
