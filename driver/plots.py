@@ -109,6 +109,16 @@ def accuracy_vs_speed(tables: dict, path: Path) -> Path:
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(16, 5.8), sharey=True)
     _accuracy_panel(ax, rows, "max_err", "max |relative error| of p0, F, a against Hertz [%]",
                     f"Accuracy against speed: {len(rows)} converged sphere cases (open: solved in 3D)")
+    # the other indenters against Sneddon, at the same kind of cost (not on the front)
+    shapes_rows = tables.get("shapes")
+    if shapes_rows is not None and len(shapes_rows) and "shape" in shapes_rows:
+        other = shapes_rows[(shapes_rows["status"] == "converged") & (shapes_rows["shape"] != "parabola")].copy()
+        other["label"] = other.apply(shape_label, axis=1) if len(other) else []
+        for name, g in other.groupby("label"):
+            err = g[["err_p0", "err_F", "err_a", "err_K"]].abs().max(axis=1, skipna=True)
+            ax.scatter(g["wall_time"], err * 100, marker="*", s=60, color=SHAPE_COLORS.get(name, "grey"),
+                       label=f"{name} against Sneddon ({len(g)})")
+        ax.legend(fontsize=7, loc="upper right")
     estimated = rows.assign(max_est=rows["accuracy_predicted"])
     _accuracy_panel(ax2, estimated[estimated["max_est"] > 0], "max_est",
                     "estimated max relative error (no Hertz) [%]", "The same cases by their own error estimate")
@@ -552,7 +562,7 @@ def shape_label(row: pd.Series) -> str:
     return str(row["shape"])
 
 
-def shapes(frame: pd.DataFrame, path: Path) -> Path:
+def shapes(frame: pd.DataFrame, profiles: pd.DataFrame, path: Path) -> Path:
     """Left: the exact sphere against Hertz's parabola of the same radius over d/R. Middle:
     F against d for each shape (markers FE, lines Sneddon). Right: each shape's error against
     n (exact contact). Rows are chosen by their columns (a case shared by two series is one row)."""
@@ -563,7 +573,8 @@ def shapes(frame: pd.DataFrame, path: Path) -> Path:
     par = need(default[default["label"] == "parabola"], "no parabola rows").set_index("d").sort_index()
     common = sph.index.intersection(par.index)
     ratio = common / sph.loc[common, "R"]
-    fig, axes = plt.subplots(1, 3, figsize=(16, 5.2))
+    fig, axes2 = plt.subplots(2, 2, figsize=(13, 10))
+    axes = axes2.ravel()
     ax = axes[0]
     for q, color in (("F", QUANTITY_COLORS[1]), ("a", QUANTITY_COLORS[2])):
         ax.plot(ratio, (sph.loc[common, f"{q}_fe"] / par.loc[common, f"{q}_fe"] - 1) * 100, "o", color=color,
@@ -606,6 +617,23 @@ def shapes(frame: pd.DataFrame, path: Path) -> Path:
     ax.set_xticks(ns, [f"{n:g}" for n in ns])
     ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    ax = axes[3]
+    at = default[(default["d"] == 0.02) & (default["label"] != "parabola")]
+    for _, row in at.iterrows():
+        prof = profiles[profiles["case_id"] == row["case_id"]] if len(profiles) else profiles
+        if not len(prof):
+            continue
+        a = row["a_fe"]
+        scale = row["F_fe"] / (np.pi * a * a)  # the mean pressure
+        color = SHAPE_COLORS.get(row["label"], "grey")
+        inside = prof[prof["r"] < 0.995 * a]
+        ax.plot(prof["r"] / a, prof["p_fe"] / scale, "-", color=color, label=f"{row['label']} (FE)")
+        ax.plot(inside["r"] / a, inside["p_hertz"] / scale, "k:", lw=1)
+    ax.plot([], [], "k:", lw=1, label="Sneddon")
+    ax.set(xlim=(0, 1.3), ylim=(0, 4), xlabel="r / a", ylabel="p / mean pressure F/(pi a^2)",
+           title="Pressure at d = 0.02 (cone: log tip; punch: 1/sqrt edge)")
+    ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7)
     return _save(fig, path)
 

@@ -83,7 +83,8 @@ CAPTIONS = {
               "the FE runs (markers) and Sneddon's exact sphere against Hertz (lines). Middle: F(d) of each "
               "indenter, FE (markers) and Sneddon (lines), with the fitted slopes. Right: each shape's largest "
               "error against Sneddon over n (exact contact); the punch is measured on F and its edge factor K, "
-              "the cone on F and a (its pressure is singular at the tip).",
+              "the cone on F and a (its pressure is singular at the tip). Bottom right: the pressure profiles "
+              "at d = 0.02 against Sneddon's.",
     "layers": "A film (E, nu) bonded to a substrate (E2, nu2) or a rigid base, sphere at d = 0.02, exact "
               "contact. Top left: the effective modulus from the contact stiffness against a/t, with the two "
               "half-space limits and Perriot and Barthel's integral equation (tests/layered_reference.py, "
@@ -193,7 +194,7 @@ CHARTS: dict[str, Chart] = {
     "units": lambda t, r, png: plots.units_check(_study(t, "units"), png),
     "calibration": lambda t, r, png: plots.calibration(_study(t, "calibration"), png),
     "over_modelling": lambda t, r, png: plots.over_modelling(_study(t, "3d"), png),
-    "shapes": lambda t, r, png: plots.shapes(_study(t, "shapes"), png),
+    "shapes": lambda t, r, png: plots.shapes(_study(t, "shapes"), _kept(r, "shapes", "profile.csv"), png),
     "layers": lambda t, r, png: plots.layers(_study(t, "layers"), _kept(r, "layers", "profile.csv"),
                                              _kept(r, "layers", "axis.csv"), png),
     "loading": lambda t, r, png: plots.loading(_study(t, "loading"), png),
