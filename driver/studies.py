@@ -266,7 +266,11 @@ def layers_study(quick: bool) -> list[Case]:
     films = [round(0.1 * x, 6) for x in thickness]
     cases = []
     for r in ratios:
-        cases += [c.labelled(f"E2/E = {r:g}") for c in grid(Case.of(E2=10.0 * r, method="lagrange"), t=films)]
+        # a stiff film a tenth of a contact radius thick on a substrate 100 times softer: its
+        # pressure peaks within about t of the edge, and p0's estimate reads 1.4% at n = 16
+        # (inaccurate; F and a within 0.2%)
+        cases += [c.labelled(f"E2/E = {r:g}", not (r <= 0.01 and c.get("t") <= 0.01))
+                  for c in grid(Case.of(E2=10.0 * r, method="lagrange"), t=films)]
     cases += labelled(grid(Case.of(E2=math.inf, method="lagrange"), t=films), lambda c: "rigid base")
     cases += [Case.of(t=0.03, E2=1000.0, method="lagrange").labelled("profile soft film"),
               Case.of(t=0.03, E2=0.1, method="lagrange").labelled("profile stiff film")]
