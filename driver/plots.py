@@ -107,7 +107,7 @@ def accuracy_vs_speed(tables: dict, path: Path) -> Path:
     """Left: the error against Hertz; right: the same cases by their own estimate."""
     rows = need(sphere_cases(tables), "no converged sphere case")
     fig, (ax, ax2) = plt.subplots(1, 2, figsize=(16, 5.8), sharey=True)
-    _accuracy_panel(ax, rows, "max_err", "max |relative error| of p0, F, a against Hertz [%]",
+    _accuracy_panel(ax, rows, "max_err", "max |relative error| of p0, F, a against Hertz (stars: Sneddon) [%]",
                     f"Accuracy against speed: {len(rows)} converged sphere cases (open: solved in 3D)")
     # the other indenters against Sneddon, at the same kind of cost (not on the front)
     shapes_rows = tables.get("shapes")
@@ -739,9 +739,9 @@ def loading(frame: pd.DataFrame, path: Path) -> Path:
     under = df[df["variant"] == "sphere under load"]
     axes[0].plot(under["d_fe"], under["F_fe"], "x", color="k", ms=10, mew=2,
                  label="sphere under load (-P): the same curve")
-    axes[0].plot([], [], "k-", lw=1, label="Hertz (exact sphere: Sneddon)")
+    axes[0].plot([], [], "-", color="grey", lw=1, label="lines: Hertz (the exact sphere: Sneddon), each series' colour")
     axes[0].set(xscale="log", yscale="log", xlabel="depth d", ylabel="force F", title="F(d): slope 3/2")
-    axes[1].plot([], [], "k-", lw=1, label="2 E* a (ellipsoid: 3F/2d)")
+    axes[1].plot([], [], "-", color="grey", lw=1, label="lines: 2 E* a (ellipsoid: 3F/2d), each series' colour")
     axes[1].set(xscale="log", yscale="log", xlabel="contact radius a (ellipsoid: along x)",
                 ylabel="contact stiffness S = dF/dd", title="Contact stiffness")
     cyl = df[df["variant"] == "cylinder"].sort_values("F_fe")
@@ -750,7 +750,8 @@ def loading(frame: pd.DataFrame, path: Path) -> Path:
         axes[2].plot(cyl["F_fe"], cyl["a_hertz"], "-", color="#c62828", lw=1, label="sqrt(4PR/(pi E*))")
         axes[2].plot(cyl["F_fe"], cyl["p0_fe"], "s", color="#ef6c00", label="cylinder p0 (FE)")
         axes[2].plot(cyl["F_fe"], cyl["p0_hertz"], "-", color="#ef6c00", lw=1, label="2P/(pi a)")
-    axes[2].set(xscale="log", yscale="log", xlabel="load per unit length P", ylabel="a, p0",
+    axes[2].set(xscale="log", yscale="log", xlabel="load per unit length P",
+                ylabel="half-width a (length), p0 (stress), the scene's units",
                 title="The cylinder, by its load (-P)")
     for ax in axes:
         ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
