@@ -102,6 +102,12 @@ def test_the_under_modelling_columns_are_the_half_spaces_at_the_depth_found(solv
     assert s["diff_film_F"] == pytest.approx(film.F / s["F_fe"] - 1, rel=1e-9)
 
 
+def test_p1_on_a_nearly_incompressible_substrate_says_it_locks(solve):
+    # the substrate locks as the film would (F 6% off at nu2 = 0.49): inaccurate, not converged
+    run = solve("-t", "0.1", "-E2", "10", "-nu2", "0.49", "-order", "1")
+    assert run.exit_code == 5 and "p1-locking" in run.summary["warnings"], run.output
+
+
 def test_the_interface_stresses_on_the_axis(solve):
     s = solve("-t", "0.1", "-E2", "100").summary
     # sigma_z is continuous across a bonded interface and compressive under the contact; at
@@ -115,7 +121,10 @@ def test_the_interface_stresses_on_the_axis(solve):
     (["-t", "0"], "-t"), (["-t", "-1"], "-t"), (["-E2", "5"], "-E2"), (["-nu2", "0.2"], "-E2"),
     (["-t", "0.1", "-nu2", "0.6"], "-nu2"), (["-t", "0.1", "-E2", "0"], "-E2"),
     (["-t", "1e-9"], "-t"), (["-t", "1e5"], "-t"), (["-t", "1e-5", "-maxdof", "1e5"], "-t"),
-    (["-t", "0.1", "-model", "3d"], "-t"), (["-t", "0.1", "-E2", "inf", "-farfield", "boussinesq"], "-farfield"),
+    (["-t", "0.1", "-model", "3d"], "-t"), (["-t", "0.1", "-E2", "1e-9"], "-E2"),
+    (["-t", "0.1", "-E2", "1e300"], "-E2"), (["-t", "0.1", "-E2", "inf", "-nu2", "0.3"], "-nu2"),
+    (["-t", "0.1", "-nu2", "0.5", "-order", "1"], "-nu2"),
+    (["-t", "0.1", "-E2", "inf", "-farfield", "boussinesq"], "-farfield"),
 ])
 def test_bad_film_input_is_one_line_naming_the_option(solve, args, option):
     run = solve(*args)

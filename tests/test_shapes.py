@@ -185,6 +185,15 @@ def test_a_table_of_a_cone_tip_rounded_by_a_sphere(solve, tmp_path):
     assert s["a_fe"] > punch_from_depth("cone", 0.02, E, NU, angle=70.3).a
 
 
+def test_a_table_that_stays_flat_then_rises_has_no_dip(solve, tmp_path):
+    # a cubic spline through these rows dips to -0.0084 at r = 0.16 (a deeper indenter than the
+    # table); Steffen's spline has no extrema between rows, so the flat part is a punch's face
+    table = write_profile(tmp_path / "kink.csv", [0, 0.1, 0.2, 0.3, 0.4, 0.5], [0, 0, 0, 0.1, 0.2, 0.3])
+    s = solve("-shape", "table", "-profile", table, "-d", "0.02").summary
+    flat = 2 * ESTAR * 0.2 * 0.02  # the flat face alone, radius 0.2, pressed to d
+    assert flat < s["F_fe"] < 1.1 * flat, s["F_fe"]
+
+
 def bad_tables(tmp_path):
     return {
         "unsorted": write_profile(tmp_path / "u.csv", [0, 0.2, 0.1, 0.3, 0.4], [0, 0.01, 0.02, 0.03, 0.04]),
@@ -199,7 +208,8 @@ def bad_tables(tmp_path):
 @pytest.mark.parametrize("args,option", [
     (["-shape", "ball"], "-shape"), (["-shape", "cone", "-angle", "0"], "-angle"),
     (["-shape", "cone", "-angle", "90"], "-angle"), (["-shape", "punch", "-a", "0"], "-a"),
-    (["-shape", "power", "-k", "0.5"], "-k"), (["-shape", "sphere", "-d", "0.6"], "-d"),
+    (["-shape", "power", "-k", "0.5"], "-k"), (["-shape", "power", "-k", "1"], "-k"),
+    (["-shape", "sphere", "-d", "0.6"], "-d"),
     (["-angle", "60"], "-angle"), (["-shape", "cone", "-R", "1"], "-R"), (["-a", "0.2"], "-a"),
     (["-shape", "sphere", "-Rx", "1", "-Ry", "2"], "-Rx"), (["-shape", "table"], "-profile"),
     (["-shape", "table", "-profile", "/nonexistent.csv"], "-profile"),
