@@ -18,13 +18,8 @@ import logging
 import math
 
 import numpy as np
+from seed_scene import A_H, F_H, NU, P0_H, D, E, R  # the seed scene, beside this script
 
-# seed scene
-E, NU, R, D = 10.0, 0.3, 0.5, 0.02
-A_H = math.sqrt(R * D)
-E_STAR = E / (1 - NU**2)
-F_H = 4.0 / 3.0 * E_STAR * A_H * D
-P0_H = 3 * F_H / (2 * math.pi * A_H**2)
 EDGE_GAP = 1e-7 * D  # contact edge: outermost r with u_z - h > -EDGE_GAP
 
 

@@ -48,13 +48,7 @@ import sys  # noqa: E402
 import tempfile  # noqa: E402
 
 import numpy as np  # noqa: E402
-
-# seed scene (units free), as edp/hertz.edp's defaults and bench/fenics_peer.py
-E, NU, R, D = 10.0, 0.3, 0.5, 0.02
-A_H = math.sqrt(R * D)
-E_STAR = E / (1 - NU**2)
-F_H = 4.0 / 3.0 * E_STAR * A_H * D
-P0_H = 3 * F_H / (2 * math.pi * A_H**2)
+from seed_scene import A_H, F_H, NU, P0_H, D, E, R  # noqa: E402  (the seed scene, beside this script)
 
 OPERATORS = ("periodic", "dcfft")
 DEPTH_TOL = 1e-7     # relative: the depth's own error is then < 1e-7 in p0 and a, < 2e-7 in F
