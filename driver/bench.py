@@ -39,6 +39,7 @@ CONFIGS = {
     "lagrange P2, n=32": Case.of(method="lagrange", n=32),
     "-accuracy 0.001": Case.of(accuracy=0.001),
     "-accuracy 0.01": Case.of(accuracy=0.01),
+    "-accuracy 1e-4": Case.of(accuracy=1e-4),
     "SI steel ball": Case.of(E=210e9, R=0.01, d=1e-5),
     "plane (cylinder)": Case.of(model="plane"),
     "load control (-P, the seed's Hertz force)": Case.of(P=0.0293040293),

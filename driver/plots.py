@@ -538,7 +538,8 @@ def calibration(frame: pd.DataFrame, path: Path) -> Path:
                         color=STATUS_COLORS.get(status, "k"), label=f"achieved ({status})", zorder=3)
         axes[2].scatter(g["accuracy_target"] * 100, g["est"] * 100, s=28, marker="x",
                         color=STATUS_COLORS.get(status, "k"), label=f"estimated ({status})", zorder=3)
-    targets = np.array([0.08, 6.0])
+    targets = np.array([0.8, 1.25]) * [acc["accuracy_target"].min() * 100, acc["accuracy_target"].max() * 100] \
+        if len(acc) else np.array([0.08, 6.0])
     axes[2].plot(targets, targets, "k-", lw=1, label="error = target")
     axes[2].set(xscale="log", yscale="log", xlabel="-accuracy target X [%]", ylabel="max error [%]",
                 title="-accuracy X: achieved (truth) and estimated error")

@@ -80,7 +80,8 @@ def domain_study(quick: bool) -> list[Case]:
     """The far boundary's bias on F against the domain radius, clamped and Boussinesq's, with exact contact."""
     Ls = [10.0, 20.0, 100.0, 1000.0] if quick else \
         [10.0, 15.0, 20.0, 30.0, 50.0, 100.0, 200.0, 500.0, 1000.0, 2000.0, 5000.0, 20000.0]
-    cases = grid(Case.of(method="lagrange"), farfield=["clamped", "boussinesq"], L=Ls)
+    # n = 32: the mesh's own error of F (0.03% at n = 16) would blur the clamped 1.1 a/L at 1000 a
+    cases = grid(Case.of(method="lagrange", n=32), farfield=["clamped", "boussinesq"], L=Ls)
     # below L = 200 a a clamped boundary's bias passes 1%: inaccurate, and said so
     return labelled(cases, lambda c: f"lagrange P2, {c.get('farfield')}",
                     lambda c: c.get("farfield") == "boussinesq" or c.get("L") >= 200)
@@ -201,7 +202,7 @@ def calibration_study(quick: bool) -> list[Case]:
     # -accuracy must reach X by the truth, or say why (inaccurate)
     scenes = [Case(), Case.of(nu=0.45), Case.of(E=2e6, nu=0.49, R=0.005, d=2e-4), Case.of(d=0.5e-4),
               Case.of(model="plane")]
-    for x in [0.05, 0.01, 0.003, 0.001]:
+    for x in [0.05, 0.01, 0.003, 0.001, 3e-4, 1e-4]:
         cases += [c.with_(accuracy=x).labelled(f"accuracy {x:g}") for c in scenes]
     return cases
 
