@@ -257,7 +257,7 @@ def gather(study: str, results_dir: Path, rows: pd.DataFrame, keep: tuple[str, .
         old = table.read(target) if target.exists() else pd.DataFrame()
         parts = []
         fresh = set()
-        for case_id in ids:
+        for case_id in sorted(ids):  # one order on every run: the file changes only with its data
             source = layout.work_root(results_dir, study) / case_id / name
             if source.is_file() and not source.is_symlink() and source.stat().st_size > 0:
                 try:
@@ -269,7 +269,7 @@ def gather(study: str, results_dir: Path, rows: pd.DataFrame, keep: tuple[str, .
         if len(old):
             parts.insert(0, old[old["case_id"].isin(ids - fresh)])
         if parts:
-            combined = pd.concat(parts, ignore_index=True)
+            combined = pd.concat(parts, ignore_index=True).sort_values("case_id", kind="stable")
             cols = ["case_id"] + [c for c in combined.columns if c != "case_id"]
             table.write_atomically(target, combined[cols].to_csv(index=False))
 

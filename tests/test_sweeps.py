@@ -177,3 +177,21 @@ def test_a_resumed_sweep_kills_a_leftover_solver_of_its_case(tmp_path):
     sweep("t", [case], tmp_path, jobs=1, timeout=120)
     time.sleep(0.2)
     assert leftover.poll() is not None and not processes_with(token)
+
+
+@pytest.mark.parametrize("seed", ["1", "2"])
+def test_gathered_files_come_in_one_order_whatever_the_hash_seed(tmp_path, seed):
+    # a set's order follows PYTHONHASHSEED: gathered in it, a rerun rewrote every kept file in
+    # another row order with the same data
+    code = (f"import pandas as pd, pathlib; from driver import layout; from driver.sweeps import gather\n"
+            f"r = pathlib.Path({str(tmp_path)!r})\n"
+            f"ids = ['c', 'a', 'b', 'e', 'd']\n"
+            f"for i in ids:\n"
+            f"    d = layout.work_root(r, 'demo') / i; d.mkdir(parents=True, exist_ok=True)\n"
+            f"    (d / 'profile.csv').write_text('r,p\\n0,1\\n1,0\\n')\n"
+            f"gather('demo', r, pd.DataFrame({{'case_id': ids}}), ('profile.csv',))\n")
+    env = dict(os.environ, PYTHONHASHSEED=seed, PYTHONPATH=str(REPO))
+    subprocess.run([sys.executable, "-c", code], check=True, env=env)
+    gathered = pd.read_csv(tmp_path / "demo" / "profile.csv")
+    assert list(gathered["case_id"]) == [c for c in "abcde" for _ in range(2)]
+    assert list(gathered["r"]) == [0, 1] * 5
