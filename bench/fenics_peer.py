@@ -13,12 +13,11 @@ import time
 T_START = time.perf_counter()  # wall_time_total counts the imports too
 
 import argparse
-import json
 import logging
 import math
 
 import numpy as np
-from seed_scene import A_H, F_H, NU, P0_H, D, E, R  # the seed scene, beside this script
+from seed_scene import A_H, F_H, NU, P0_H, D, E, R, finish  # the seed scene, beside this script
 
 EDGE_GAP = 1e-7 * D  # contact edge: outermost r with u_z - h > -EDGE_GAP
 
@@ -191,9 +190,7 @@ def main():
     ap.add_argument("--order", type=int, default=2, choices=(1, 2), help="Lagrange degree")
     args = ap.parse_args()
     out = run(args.n, args.L, args.kpen, args.order)
-    out["wall_time_total"] = time.perf_counter() - T_START
-    print(json.dumps(out))
-    return 0 if out["converged"] else 1
+    return finish(out, T_START)
 
 
 if __name__ == "__main__":

@@ -40,7 +40,6 @@ T_START = time.perf_counter()  # wall_time_total counts the imports too
 
 import argparse  # noqa: E402
 import contextlib  # noqa: E402
-import json  # noqa: E402
 import math  # noqa: E402
 import os  # noqa: E402
 import re  # noqa: E402
@@ -48,7 +47,7 @@ import sys  # noqa: E402
 import tempfile  # noqa: E402
 
 import numpy as np  # noqa: E402
-from seed_scene import A_H, F_H, NU, P0_H, D, E, R  # noqa: E402  (the seed scene, beside this script)
+from seed_scene import A_H, F_H, NU, P0_H, D, E, R, finish  # noqa: E402  (the seed scene, beside this script)
 
 OPERATORS = ("periodic", "dcfft")
 DEPTH_TOL = 1e-7     # relative: the depth's own error is then < 1e-7 in p0 and a, < 2e-7 in F
@@ -196,9 +195,7 @@ def main():
     ap.add_argument("--tol", type=float, default=1e-12, help="the solver's relative tolerance")
     args = ap.parse_args()
     out = run(args.N, args.L, args.operator, args.tol)
-    out["wall_time_total"] = time.perf_counter() - T_START
-    print(json.dumps(out))
-    return 0 if out["converged"] else 1
+    return finish(out, T_START)
 
 
 if __name__ == "__main__":
