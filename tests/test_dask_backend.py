@@ -194,7 +194,7 @@ def test_a_lost_worker_loses_no_case_and_duplicates_none(cluster, tmp_path):
 
 def test_ctrl_c_cancels_the_tasks_and_kills_their_solvers(cluster, tmp_path):
     spec = tmp_path / "s.toml"
-    spec.write_text('name = "long"\n[base]\nn = 64\n[grid]\nkpen = [1e4, 1e5, 1e6, 1e7]\n')
+    spec.write_text('name = "long"\n[base]\nn = 128\n[grid]\nkpen = [1e4, 1e5, 1e6, 1e7]\n')
     sweep = subprocess.Popen([sys.executable, "-m", "driver", "sweep", "--spec", str(spec), "--results",
                               str(tmp_path), "--scheduler", cluster.address, "--no-progress"],
                              cwd=ROOT, env=cluster.env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
