@@ -82,6 +82,20 @@ def test_a_sphere_in_3d_agrees_with_its_axisymmetric_model(solve):
     assert full["ndof"] > 3 * axi["ndof"] and full["memory_mb"] > axi["memory_mb"]
 
 
+def test_a_stiff_penalty_reads_both_semi_axes_of_an_ellipse(solve):
+    """At gamma = 1e3 the nodes just inside the edge stand barely open between the
+    penalty's quadrature points; the edge fit reads past them (it read a 1.9% short)."""
+    run = solve("-Rx", "0.5", "-Ry", "2", "-gamma", "1e3")
+    s = run.summary
+    assert run.exit_code == 0 and s["status"] == "converged", run.output
+    ref = ellipsoid_from_depth(SEED["d"], SEED["E"], SEED["nu"], 0.5, 2.0)
+    # measured -0.02% and -0.10%, with estimates of 0.3% each
+    assert s["a_fe"] == pytest.approx(ref.b_short, rel=0.005)
+    assert s["b_fe"] == pytest.approx(ref.a_long, rel=0.005)
+    for axis, ref_axis in (("a", ref.b_short), ("b", ref.a_long)):
+        assert abs(s[f"{axis}_fe"] / ref_axis - 1) <= 2 * s[f"est_err_{axis}"], axis
+
+
 def test_lagrange_in_3d_is_nodally_exact(solve):
     run = solve("-model", "3d", "-method", "lagrange")
     s = run.summary
