@@ -30,9 +30,12 @@ from driver.executors import Executor, LocalPool, make_executor
 from driver.run import run_case
 from driver.schema import study_columns
 
+DEFAULT = "default (newton P2, n=16)"
+ACCURACY_FINEST = "-accuracy 1e-4"
+ELLIPSOID = "3d ellipsoid Ry/Rx=4 (P2, n=5)"
 LOAD_CONTROL = "load control (-P 0.03, near the seed's force)"
 CONFIGS = {
-    "default (newton P2, n=16)": Case(),
+    DEFAULT: Case(),
     "seed command (-kpen 1e5)": Case.of(kpen=1e5),
     "lagrange (P2, n=16)": Case.of(method="lagrange"),
     "uzawa (P2, n=16)": Case.of(method="uzawa"),
@@ -40,7 +43,7 @@ CONFIGS = {
     "lagrange P2, n=32": Case.of(method="lagrange", n=32),
     "-accuracy 0.001": Case.of(accuracy=0.001),
     "-accuracy 0.01": Case.of(accuracy=0.01),
-    "-accuracy 1e-4": Case.of(accuracy=1e-4),
+    ACCURACY_FINEST: Case.of(accuracy=1e-4),
     "SI steel ball": Case.of(E=210e9, R=0.01, d=1e-5),
     "plane (cylinder)": Case.of(model="plane"),
     # a round load near the seed's force: its cost against the depth-controlled default
@@ -51,13 +54,14 @@ CONFIGS = {
     "coated: t = a, E2 = 10 E": Case.of(t=0.1, E2=100.0),
     "coated: t = a/100 on a rigid base (lagrange)": Case.of(t=0.001, E2=math.inf, method="lagrange"),
     "3d sphere (P2, n=5)": Case.of(model="3d"),
-    "3d ellipsoid Ry/Rx=4 (P2, n=5)": Case.of(Rx=0.5, Ry=2.0),
+    ELLIPSOID: Case.of(Rx=0.5, Ry=2.0),
 }
 FENICS = layout.PACKAGE_DIR.parent / "bench" / "fenics_peer.py"  # in a checkout only
 TAMAAS = layout.PACKAGE_DIR.parent / "bench" / "tamaas_peer.py"
 TAMAAS_PYTHON = layout.PACKAGE_DIR.parent / ".venv-peers" / "bin" / "python"  # driver/setup.sh --peers
-TAMAAS_GRIDS = (64, 128)  # dcfft on 4 a: 16 and 32 cells per contact radius
+TAMAAS_GRIDS = (64, 96, 128)  # dcfft on 4 a: 16, 24 and 32 cells per contact radius
 DEBIAN_PYTHON = "/usr/bin/python3"  # python3-dolfin is a Debian package
+ERRORS = ("err_p0", "err_F", "err_a", "err_b")  # relative errors against Hertz, per configuration
 
 
 def direct_run(case: Case, outdir: Path) -> tuple[float, dict]:
@@ -132,6 +136,50 @@ def dask_overhead(root: Path, repeat: int = 5, workers: int = 2) -> dict[str, li
     return times
 
 
+def _max_error(row: pd.Series) -> float:
+    return max((abs(row[k]) for k in ERRORS if k in row and row[k] == row[k]), default=math.nan)
+
+
+def target_lines(table: pd.DataFrame, starts: pd.DataFrame) -> list[str]:
+    """Each speed target of the benchmark against what this run measured, one line each:
+    the figure, the target and 'met' or 'missed' (a configuration that did not run: no line)."""
+    by = table.set_index("configuration")
+    lines = []
+
+    def line(name: str, ok: bool, figure: str, target: str) -> None:
+        lines.append(f"{'met   ' if ok else 'missed'} {name}: {figure} (target {target})")
+
+    if DEFAULT in by.index:
+        d = by.loc[DEFAULT]
+        line("default run", d.wall_median_s <= 0.2 and _max_error(d) <= 1e-3,
+             f"{d.wall_median_s:.3f} s, max error {_max_error(d):.3%}", "at most 0.2 s and 0.1%")
+        peers = by[[c.startswith("Tamaas") for c in by.index]]
+        reach = peers[peers["err_p0"].abs() <= abs(d.err_p0)]
+        if len(peers) and len(reach):
+            fastest = reach["wall_median_s"].idxmin()
+            ratio = d.wall_median_s / reach.loc[fastest, "wall_median_s"]
+            line("against Tamaas at equal p0 error", ratio < 1,
+                 f"default p0 error {abs(d.err_p0):.4%} in {d.wall_median_s:.3f} s; the fastest Tamaas grid "
+                 f"reaching it, {fastest}, {reach.loc[fastest, 'wall_median_s']:.3f} s (ratio {ratio:.2f})",
+                 "faster")
+        elif len(peers):
+            line("against Tamaas at equal p0 error", True,
+                 f"default p0 error {abs(d.err_p0):.4%}; no benched Tamaas grid reaches it", "faster")
+    if len(starts):
+        worst = starts[starts["start"] == "coarse"].groupby("order")["all_levels"].max()
+        line("Newton over all levels, gamma 1e-2 to 1e6", bool((worst <= 8).all()),
+             ", ".join(f"P{order} at most {count:.0f}" for order, count in worst.items()), "at most 8")
+    if ACCURACY_FINEST in by.index:
+        f = by.loc[ACCURACY_FINEST]
+        line("-accuracy 1e-4", f.wall_median_s <= 2 and _max_error(f) <= 1e-4,
+             f"{f.wall_median_s:.2f} s, max error {_max_error(f):.1e}", "at most 2 s and 1e-4")
+    if ELLIPSOID in by.index:
+        e = by.loc[ELLIPSOID]
+        line("3D ellipsoid Ry/Rx = 4", e.wall_median_s <= 10 and _max_error(e) <= 5e-3,
+             f"{e.wall_median_s:.1f} s, max error {_max_error(e):.2%} (p0, F, a, b)", "at most 10 s and 0.5%")
+    return lines
+
+
 def bench(out: Path, repeat: int = 5) -> int:
     walls: dict[str, list[float]] = {name: [] for name in CONFIGS}
     summaries: dict[str, dict] = {}
@@ -192,6 +240,7 @@ def bench(out: Path, repeat: int = 5) -> int:
                      "solve_over_one_linear_solve": s["t_solve"] / s["t_linear_one"] if s["t_linear_one"] else None,
                      "max_abs_err": max((abs(s[k]) for k in ("err_p0", "err_F", "err_a") if s[k] == s[k]),
                                         default=math.nan),
+                     **{k: s[k] for k in ERRORS},
                      "est_max_err": s["accuracy_predicted"],
                      "nodal_penetration_over_d": s["nodal_penetration_over_d"], "memory_mb": s["memory_mb"]})
     if fenics_row is not None:
@@ -206,7 +255,8 @@ def bench(out: Path, repeat: int = 5) -> int:
                      "wall_median_s": statistics.median(tamaas_walls[n]), "wall_min_s": min(tamaas_walls[n]),
                      "status": "converged" if peer_row["converged"] else "not converged",
                      "iterations": peer_row["iterations"],
-                     "max_abs_err": max(abs(peer_row[k]) for k in ("err_p0", "err_F", "err_a"))})
+                     "max_abs_err": max(abs(peer_row[k]) for k in ("err_p0", "err_F", "err_a")),
+                     **{k: peer_row.get(k) for k in ERRORS}})
     if dask_times is not None:
         for name, values in dask_times.items():
             rows.append({"configuration": f"default per case, 2 workers, {name}",
@@ -220,10 +270,13 @@ def bench(out: Path, repeat: int = 5) -> int:
     pd.set_option("display.width", 220)
     print(table.drop(columns=["wall_min_s"]).to_string(index=False, float_format=lambda v: f"{v:.4g}"))
     print()
-    ratio16 = by["lagrange (P2, n=16)"] / by["default (newton P2, n=16)"]
+    ratio16 = by["lagrange (P2, n=16)"] / by[DEFAULT]
     ratio32 = by["lagrange P2, n=32"] / by["newton P2, n=32"]
     print(f"lagrange / newton wall time: n=16 {ratio16:.2f}, n=32 {ratio32:.2f}")
-    default = by["default (newton P2, n=16)"]
+    print("\ntargets, measured in this run:")
+    print("\n".join(target_lines(table, pd.DataFrame(starts))))
+    print()
+    default = by[DEFAULT]
     for name in (LOAD_CONTROL, "exact sphere (-shape sphere)", "cone 70.3",
                  "flat punch", "coated: t = a, E2 = 10 E"):
         print(f"{name} / default wall time: {by[name] / default:.2f}")
