@@ -29,7 +29,7 @@ def test_the_fingerprint_ignores_comments_and_whitespace(tmp_path, monkeypatch):
     shutil.copytree(EDP_DIR, copy)
     monkeypatch.setattr(freefem, "EDP_DIR", copy)
     before = freefem.edp_hash()
-    target = copy / "lib" / "fe" / "mesh2d.idp"
+    target = copy / "lib" / "fe" / "section.idp"
     text = target.read_text()
     target.write_text("// a new comment\n" + text.replace("int edgeRefine = 4;", "int  edgeRefine  =  4 ;  /* why */"))
     assert freefem.edp_hash() == before
