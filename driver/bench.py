@@ -32,7 +32,7 @@ from driver.schema import study_columns
 
 DEFAULT = "default (newton P2, n=16)"
 ACCURACY_FINEST = "-accuracy 1e-4"
-ELLIPSOID = "3d ellipsoid Ry/Rx=4 (P2, n=5)"
+ELLIPSOID = "3d ellipsoid Ry/Rx=4 (P2, n=8)"
 LOAD_CONTROL = "load control (-P 0.03, near the seed's force)"
 CONFIGS = {
     DEFAULT: Case(),
@@ -53,7 +53,7 @@ CONFIGS = {
     "flat punch": Case.of(shape="punch"),
     "coated: t = a, E2 = 10 E": Case.of(t=0.1, E2=100.0),
     "coated: t = a/100 on a rigid base (lagrange)": Case.of(t=0.001, E2=math.inf, method="lagrange"),
-    "3d sphere (P2, n=5)": Case.of(model="3d"),
+    "3d sphere (P2, n=8)": Case.of(model="3d"),
     ELLIPSOID: Case.of(Rx=0.5, Ry=2.0),
 }
 FENICS = layout.PACKAGE_DIR.parent / "bench" / "fenics_peer.py"  # in a checkout only

@@ -126,7 +126,7 @@ CAPTIONS = {
               "of the half-space moving as a point load of the contact force, the default) stays at the "
               "discretization floor from L = 10 a.",
     "over_modelling": "The same sphere solved axisymmetric (solid) and in 3D (dashed, a quarter of the "
-                      "half-space on TetGen meshes) over meshes: error against wall time, peak memory and "
+                      "half-space, the 2D section revolved) over meshes: error against wall time, peak memory and "
                       "dofs. The title compares, at the most accurate converged 3D case, the cheapest axi case "
                       "that is at least as accurate (same method).",
     "calibration": "Left and middle: the run's own error estimate (no Hertz) against the true max error "
