@@ -8,7 +8,7 @@ from driver.bench import ACCURACY_FINEST, DEFAULT, ELLIPSOID, target_lines
 
 
 def _table(default_wall=0.17, default_p0=3e-4, peers=((64, 0.15, 2.9e-4), (128, 0.41, 2.4e-4)),
-           accuracy=(1.1, 3e-5), ellipsoid=(14.5, 2e-3, -6e-3)):
+           accuracy=(1.1, 3e-5), ellipsoid=(14.5, 2e-3, -6e-3), dask=(0.107, 0.115)):
     nan = math.nan
     rows = [{"configuration": DEFAULT, "wall_median_s": default_wall,
              "err_p0": default_p0, "err_F": 2e-5, "err_a": 3e-4, "err_b": nan},
@@ -18,6 +18,8 @@ def _table(default_wall=0.17, default_p0=3e-4, peers=((64, 0.15, 2.9e-4), (128, 
              "err_p0": ellipsoid[1], "err_F": 1e-3, "err_a": 1e-3, "err_b": ellipsoid[2]}]
     rows += [{"configuration": f"Tamaas peer (dcfft, N={n})", "wall_median_s": wall,
               "err_p0": p0, "err_F": 1e-3, "err_a": 1e-3, "err_b": nan} for n, wall, p0 in peers]
+    rows += [{"configuration": f"default per case, 2 workers, {name}, sweep", "wall_median_s": wall}
+             for name, wall in zip(("local pool", "dask"), dask)]
     return pd.DataFrame(rows)
 
 
@@ -56,6 +58,7 @@ def test_the_newton_target_counts_the_worst_coarse_start_over_every_penalty_and_
     ({}, "3D ellipsoid", "missed"), ({"ellipsoid": (9.0, 2e-3, -4e-3)}, "3D ellipsoid", "met"),
     # the semi-axis along y counts in 3D
     ({"ellipsoid": (9.0, 2e-3, -6e-3)}, "3D ellipsoid", "missed"),
+    ({}, "Dask", "missed"), ({"dask": (0.107, 0.110)}, "Dask", "met"),
 ])
 def test_each_target_line_says_met_only_within_its_bounds(kwargs, name, verdict):
     assert _line(target_lines(_table(**kwargs), _starts(8)), name).startswith(verdict)

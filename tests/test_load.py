@@ -85,13 +85,15 @@ def test_a_penalty_adds_its_compliance_in_series(solve):
 def test_the_elliptical_example_under_load(solve):
     # a rigid ellipsoid Rx = 10 mm, Ry = 40 mm on steel (N, mm, MPa), P = 100 N: elliptical Hertz
     # gives 0.11506 mm along x, 0.28772 mm along y, p0 = 1442.3 MPa, d = 1.6967 um
-    run = solve("-E", "210000", "-nu", "0.3", "-Rx", "10", "-Ry", "40", "-P", "100", timeout=300)
+    # n = 10: at the default n = 8 the semi-axes read within 0.2%, but the pair (4, 8) estimates
+    # the long one past 1% under load (inaccurate, README)
+    run = solve("-E", "210000", "-nu", "0.3", "-Rx", "10", "-Ry", "40", "-P", "100", "-n", "10", timeout=300)
     assert run.exit_code == 0, run.output
     s = run.summary
     ref = ellipsoid_from_load(100.0, 210000.0, 0.3, 10.0, 40.0)
     assert (ref.b_short, ref.a_long) == pytest.approx((0.11506, 0.28772), rel=1e-4)
     assert ref.p0 == pytest.approx(1442.3, rel=1e-4) and ref.d == pytest.approx(1.6967e-3, rel=1e-4)
-    # measured +0.12%, -0.07%, +0.46%, -0.09%
+    # measured a +0.10%, b -0.28%, p0 and d within 0.1%
     assert s["a_fe"] == pytest.approx(ref.b_short, rel=0.02) and s["b_fe"] == pytest.approx(ref.a_long, rel=0.02)
     assert s["p0_fe"] == pytest.approx(ref.p0, rel=0.02) and s["d_fe"] == pytest.approx(ref.d, rel=0.02)
     # any paraboloid: S = 3F/(2d)
