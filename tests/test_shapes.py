@@ -88,9 +88,10 @@ def test_power_law_profiles_match_sneddon(solve, k):
         assert run.exit_code == 0 and rel(s["p0_fe"], p0) < 5e-3, (s["p0_fe"], p0)
     else:
         # a cusp at the tip (f'' infinite there): p0 converges as h^(k-1), and the run says how far
-        # off it is (measured -1.9% at n = 16, estimated 11%: 'inaccurate', never 'converged')
+        # off it is (measured -1.6% at n = 16, estimated 12%: 'inaccurate', never 'converged'; at
+        # the second order of a smooth tip the estimate read 1.75%, barely above the truth)
         err = rel(s["p0_fe"], p0)
-        assert run.exit_code == 5 and s["est_err_p0"] >= err, (err, s["est_err_p0"])
+        assert run.exit_code == 5 and s["est_err_p0"] >= 2 * err, (err, s["est_err_p0"])
 
 
 @pytest.mark.parametrize("method,tol", [("newton", 3e-3), ("lagrange", 1e-3)])
