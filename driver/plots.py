@@ -22,6 +22,7 @@ import pandas as pd  # noqa: E402
 
 from driver import files, layout  # noqa: E402
 from driver.errors import ReportError  # noqa: E402
+from driver.schema import max_error  # noqa: E402
 
 ERRORS = {"err_p0": "p0", "err_F": "F", "err_a": "a"}
 QUANTITY_COLORS = ("#1565c0", "#c62828", "#2e7d32")
@@ -48,11 +49,6 @@ def need(frame: pd.DataFrame | None, what: str) -> pd.DataFrame:
     if frame is None or not len(frame):
         raise NoData(what)
     return frame
-
-
-def max_error(frame: pd.DataFrame) -> pd.Series:
-    """Largest |error| of p0, F, a, and in 3D of b (NaN in 2D, skipped)."""
-    return frame[list(ERRORS) + ["err_b"]].abs().max(axis=1, skipna=True)
 
 
 def sphere_cases(tables: dict[str, pd.DataFrame]) -> pd.DataFrame:

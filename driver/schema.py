@@ -9,6 +9,8 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 
+import pandas as pd
+
 from driver import freefem
 
 LEADING = ["study", "case_id", "variant", "expect_converged"]
@@ -18,6 +20,15 @@ TRAILING = ["edp_hash", "wall_time", "timings", "max_rss_mb", "jobs", "exit_code
 DRIVER_TEXT = ["study", "case_id", "variant", "edp_hash", "error", "timings"]
 # hertz.edp's outputs that are words; its word and path options are text too (text_columns)
 OUTPUT_TEXT = ["status", "warnings", "reference"]
+
+# the relative errors against the reference (err_b: 3D only, NaN in 2D)
+ERROR_COLUMNS = ("err_p0", "err_F", "err_a", "err_b")
+
+
+def max_error(frame: pd.DataFrame) -> pd.Series:
+    """Largest |relative error| of each row over ERROR_COLUMNS (absent or NaN ones skipped)."""
+    return frame.reindex(columns=list(ERROR_COLUMNS)).abs().max(axis=1, skipna=True)
+
 
 # a run that gave an answer: its p0, F and a must be finite numbers
 ANSWERED = ("converged", "inaccurate")
