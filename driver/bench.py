@@ -109,6 +109,12 @@ def _through(executor: Executor, workdir: Path, count: int, summary: list[str], 
     return (time.perf_counter() - start) / count
 
 
+# cases per worker in a benched sweep: a real sweep runs hundreds, so a batch of
+# 4 per worker let the fixed cost of a batch (its first submissions and its
+# tail, one worker idle) weigh as much as the per-case cost being measured
+SWEEP_CASES = 16
+
+
 def dask_overhead(root: Path, repeat: int = 5, workers: int = 2) -> dict[str, list[float]] | None:
     """Seconds per default case through the local pool and through a LocalCluster of
     the same size, interleaved: one case at a time (the latency of a case) and in
@@ -127,7 +133,7 @@ def dask_overhead(root: Path, repeat: int = 5, workers: int = 2) -> dict[str, li
         for k in range(repeat):
             for name, executor in (("local pool", local), ("dask", dask)):
                 times[f"{name}, one case"].append(_through(executor, root / name / f"one{k}", 1, summary, columns))
-                times[f"{name}, sweep"].append(_through(executor, root / name / f"sweep{k}", 4 * workers,
+                times[f"{name}, sweep"].append(_through(executor, root / name / f"sweep{k}", SWEEP_CASES * workers,
                                                         summary, columns))
     finally:
         dask.close()
