@@ -134,7 +134,7 @@ def test_plan_puts_costly_cases_first(tmp_path):
     assert [c.get("n") for c in todo] == [64, 32, 16, 4]
 
 
-SLOW_SPEC = 'name = "slow"\n[base]\nn = 64\nmethod = "lagrange"\n[grid]\nkpen = [1e4, 1e6]\n'
+SLOW_SPEC = 'name = "slow"\n[base]\nn = 128\nmethod = "lagrange"\n[grid]\nkpen = [1e4, 1e6]\n'
 
 
 @pytest.mark.slow
@@ -153,7 +153,7 @@ def test_killing_a_sweep_leaves_no_solver_running_and_resumes(tmp_path, sig):
     proc.send_signal(sig)
     start = time.perf_counter()
     proc.wait(timeout=60)
-    assert time.perf_counter() - start < 3  # a case takes 5 s: the driver did not wait for it
+    assert time.perf_counter() - start < 2  # a case takes about 4 s: the driver did not wait for it
     time.sleep(0.5)
     assert not solvers_under(tmp_path)  # pdeathsig, or the handler, stopped them
     again = cli("sweep", "--spec", str(spec), "--results", str(tmp_path), "--no-progress")
