@@ -39,8 +39,9 @@ fi
 if ! command -v FreeFem++ >/dev/null || [ ! -e /usr/lib/freefem++/MUMPS_seq.so ] \
    || [ ! -e /usr/include/freefem++/idp/getARGV.idp ] || ! dpkg -s libopenblas0-serial >/dev/null 2>&1; then
   echo "setup: installing FreeFEM from Debian packages"
-  # the serial OpenBLAS replaces the reference BLAS under MUMPS (update-alternatives):
-  # 3 to 5 times faster factorizations on 3D meshes, one thread per case
+  # the serial OpenBLAS replaces the reference BLAS under CHOLMOD and MUMPS
+  # (update-alternatives): 3 to 5 times faster factorizations on 3D meshes,
+  # one thread per case
   apt_install freefem++ libfreefem++ libfreefem++-dev libopenblas0-serial
 fi
 
