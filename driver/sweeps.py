@@ -284,7 +284,7 @@ def _command_output(cmd: list[str]) -> str:
 def record_environment(results_dir: Path) -> None:
     """What the last sweep ran on, for the report (which runs nothing itself)."""
     packages = _command_output(["dpkg-query", "-W", "-f=${Package} ${Version}\n", "freefem++",
-                                "libmumps-seq-*"]).split("\n")
+                                "libmumps-seq-*", "libcholmod*"]).split("\n")
     cpu = next((ln.split(":", 1)[1].strip() for ln in _command_output(["cat", "/proc/cpuinfo"]).splitlines()
                 if ln.startswith("model name")), platform.machine())
     env = {"date": time.strftime("%Y-%m-%d"),
@@ -293,6 +293,7 @@ def record_environment(results_dir: Path) -> None:
            "solver code": freefem.edp_hash(),
            "FreeFEM": next((p.split()[1] for p in packages if p.startswith("freefem++ ")), "unknown"),
            "MUMPS": next((p.split()[1] for p in packages if p.startswith("libmumps")), "unknown"),
+           "CHOLMOD": next((p.split()[1] for p in packages if p.startswith("libcholmod")), "unknown"),
            "Python": platform.python_version(), "numpy": np.__version__, "pandas": pd.__version__,
            "CPU": f"{cpu}, {cores()} cores"}
     target = results_dir / layout.ENVIRONMENT_FILE
