@@ -163,8 +163,8 @@ def test_the_axisymmetric_model_of_an_ellipsoid_estimates_its_own_error(solve):
 def test_the_estimate_reads_the_long_semi_axis_along_x_as_along_y(solve):
     """Ry/Rx = 1/4: the long axis lies along x, where the edge is read on the plane
     y = 0. Its mesh error falls slower than first order from n = 4 to 8, and the
-    penalty's part of a (about delta, of either sign) cancelled half of the rest
-    when it was added with its sign: the estimate read 0.16% (floored to 0.20%)
+    penalty's part of a (+delta) cancelled half of its Richardson part when the
+    parts were added with their signs: the estimate read 0.16% (floored to 0.20%)
     where the truth was 0.44%. Every estimate holds at least half its truth."""
     run = solve("-Rx", "2", "-Ry", "0.5")
     s = run.summary
