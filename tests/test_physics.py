@@ -144,6 +144,33 @@ def test_lagrange_is_the_stiff_penalty_limit(solve):
     assert stiff["a_fe"] == pytest.approx(exact["a_fe"], rel=1 / 64)
 
 
+@pytest.mark.parametrize("gamma", ["1e5", "1e6"])
+def test_a_stiff_penalty_settles_its_fine_level_in_a_few_steps(solve, gamma):
+    # each contact quadrature point is an unknown of the active set; with 16 per element edge
+    # a stiff penalty flipped points of the edge straddling the contact edge back and forth:
+    # 7 fine steps, 12 over all levels (measured now: 2 and 7)
+    s = solve("-gamma", gamma).summary
+    assert s["status"] == "converged"
+    assert s["iterations"] <= 3 and s["iterations"] + s["coarse_iterations"] <= 8
+
+
+@pytest.mark.parametrize("gamma", ["0.01", "0.1"])
+def test_a_soft_penalty_bands_its_fine_level_at_its_own_edge(solve, gamma):
+    # its contact spreads past the exact one (a +34% and +17%): banded at the medium level's
+    # exact edge, the fine level was solved again (11 and 12 steps over all levels; now 8 and 9)
+    s = solve("-gamma", gamma).summary
+    assert s["relevels"] == 0 and s["iterations"] + s["coarse_iterations"] <= 9
+
+
+def test_the_iteration_columns_count_every_level_of_the_history(solve):
+    # -accuracy with a penalty: a stiffer penalty (the fine level solved again) and a finer mesh
+    run = solve("-accuracy", "2e-4", "-method", "newton")
+    s, history = run.summary, run.table("history")
+    assert s["relevels"] >= 1 and history["level"].nunique() >= 4
+    assert s["iterations"] == (history["level"] == history["level"].max()).sum()
+    assert s["iterations"] + s["coarse_iterations"] == len(history)
+
+
 def test_lagrange_pressure_from_the_multiplier_matches_hertz(solve):
     run = solve("-method", "lagrange")
     s = run.summary
