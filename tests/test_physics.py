@@ -154,6 +154,25 @@ def test_a_stiff_penalty_settles_its_fine_level_in_a_few_steps(solve, gamma):
     assert s["iterations"] <= 3 and s["iterations"] + s["coarse_iterations"] <= 8
 
 
+@pytest.mark.parametrize("gamma", ["1e4", "1e6"])
+def test_a_stiff_p1_penalty_settles_its_fine_level_in_a_few_steps(solve, gamma):
+    # P1 against the curved indenter: only the middle points of each element stayed in
+    # contact, and Newton flipped them (5 and 7 fine steps, 9 and 11 over all levels;
+    # measured now: 2 and 6)
+    s = solve("-order", "1", "-gamma", gamma).summary
+    assert s["iterations"] <= 3 and s["iterations"] + s["coarse_iterations"] <= 8
+
+
+def test_a_stiff_p1_penalty_tends_to_the_nodal_exact_solution(solve):
+    # P1's gap uses the indenter's interpolant, whose stiff limit is lagrange's nodal
+    # constraint: at 1e6 E*/h the penalty leaves about 1e-6 (measured 1.6e-7); the curved
+    # indenter's limit read 2e-3 away in p0 (3e-4 in F)
+    pen = solve("-order", "1", "-gamma", "1e6").summary
+    exact = solve("-order", "1", "-method", "lagrange").summary
+    for q in ("p0_fe", "F_fe", "a_fe"):
+        assert pen[q] == pytest.approx(exact[q], rel=2e-5), q
+
+
 @pytest.mark.parametrize("gamma", ["0.01", "0.1"])
 def test_a_soft_penalty_bands_its_fine_level_at_its_own_edge(solve, gamma):
     # its contact spreads past the exact one (a +34% and +17%): banded at the medium level's
