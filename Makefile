@@ -35,7 +35,7 @@ bench:                            ## timings: medians of interleaved runs, peers
 	bash driver/setup.sh --peers
 	$(PYTHON) -m driver bench
 
-test:                             ## the whole test suite, as CI runs it (about 6 minutes on 2 cores; writes nothing tracked)
+test:                             ## the whole test suite, as CI runs it (about 10 minutes on 2 cores; writes nothing tracked)
 	$(PYTHON) -m pytest -q tests
 
 test-fast:                        ## the quick tier for the edit-run loop: pure-Python tests and a few solver runs (about a minute)

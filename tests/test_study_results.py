@@ -46,8 +46,10 @@ def test_mesh_convergence_orders(studies):
     p1 = mesh[(mesh["variant"] == "lagrange P1") & (mesh["n"] >= 10)].sort_values("n")  # n = 5: not yet asymptotic
     # P1 p0 measured 0.79 over n = 10..40 (the axis graded from the surface, fe/section.idp)
     assert slope(1 / p1["n"], p1["err_p0"]) > 0.7 and slope(1 / p1["n"], p1["err_F"]) > 1.0
-    # P1 is honest about its coarse meshes: every one is inaccurate (4% at n = 16)
-    assert (mesh[mesh["order"] == 1]["status"] == "inaccurate").all()
+    # P1 is honest about its coarse meshes: inaccurate up to n = 40 (3.7% at n = 16; the full
+    # study's n = 80 and 160 are within 1% and converged, their estimates 0.85 to 1.0 of the truth)
+    p1 = mesh[mesh["order"] == 1]
+    assert len(p1) >= 3 and (p1[p1["n"] <= 40]["status"] == "inaccurate").all()
 
 
 def test_the_estimate_tracks_the_true_error(studies):
