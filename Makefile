@@ -38,7 +38,7 @@ bench:                            ## timings: medians of interleaved runs, peers
 test:                             ## the whole test suite, as CI runs it (about 10 minutes on 2 cores; writes nothing tracked)
 	$(PYTHON) -m pytest -q tests
 
-test-fast:                        ## the quick tier for the edit-run loop: pure-Python tests and a few solver runs (about a minute)
+test-fast:                        ## the quick tier for the edit-run loop: pure-Python tests and a few solver runs (about 3 to 4 minutes)
 	$(PYTHON) -m pytest -q -m "not slow" tests
 
 lint:                             ## FreeFEM compiles (every branch: dimension, order, formulation), ruff and mypy are clean

@@ -3,7 +3,7 @@
 
 Each mutation replaces one piece of code and runs the tests that guard it; a
 mutation the tests do not catch is a hole in the suite. The files are restored
-whatever happens. `make mutate` runs them all (about 25 minutes on 2 cores);
+whatever happens. `make mutate` runs them all (about 10 minutes on 2 cores);
 `python tests/mutations.py symbolic --force` runs those whose name holds either word.
 """
 from __future__ import annotations
