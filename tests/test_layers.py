@@ -82,6 +82,14 @@ def test_a_stiff_penalty_on_a_stiff_film_keeps_its_contact_radius(solve):
     assert s["status"] == "converged" and rel(s["a_fe"], ref.a) < 5e-3, (s["status"], s["a_fe"], ref.a)
 
 
+def test_a_soft_penalty_on_a_soft_film_over_a_stiff_base_is_banded_once(solve):
+    # nearly a Winkler foundation: the exact edge at 0.86 of the overlap, so a soft penalty
+    # spreads only 0.1 (the half-space's law says 0.26): a band widened past the overlap
+    # missed the fine edge and the level was solved again (n = 8 to 32 at 1e-2 E*/h)
+    s = solve("-t", "0.05", "-E2", "100", "-gamma", "0.01").summary
+    assert s["relevels"] == 0 and s["iterations"] + s["coarse_iterations"] <= 8
+
+
 @pytest.mark.parametrize("t_over_a", [0.1, 0.01])
 def test_a_thin_layer_on_a_rigid_base(solve, t_over_a):
     t = t_over_a * HZ.a

@@ -116,6 +116,21 @@ def test_the_default_newton_path_converges_where_the_zero_start_may_not(studies)
             .to_numpy()).all()
 
 
+def test_newton_takes_at_most_8_steps_over_all_levels_at_any_penalty(studies):
+    # the default path (coarse start, line search, no continuation), gamma from 1e-2 to 1e6
+    # E*/h (P2 here; the full study adds P1, and tests/test_physics.py penalties in between):
+    # every level counted, and one factorization of the fine level
+    st = studies["stability"]
+    default = st[(st["method"] == "newton") & (st["start"] == "coarse") & (st["linesearch"] == 1)
+                 & (st["cont"] == 0)]
+    assert 2 in set(default["order"])
+    for order, group in default.groupby("order"):
+        assert group["gamma"].min() <= 1e-2 and group["gamma"].max() >= 1e6 and len(group) >= 5
+        total = group["iterations"] + group["coarse_iterations"]
+        assert (total <= 8).all(), (order, group[["gamma", "iterations", "coarse_iterations"]])
+        assert (group["factorizations"] == 1).all(), order
+
+
 def test_the_same_scene_in_three_unit_systems_gives_the_same_numbers(studies):
     units = studies["units"].copy()
     units["scene"] = units["variant"].str.rsplit(", ", n=1).str[0]
