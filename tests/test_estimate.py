@@ -102,6 +102,10 @@ FORMER_MISSES = [
     ("-order", "1", "-farfield", "clamped"),
     ("-model", "plane", "-gamma", "5"),
     ("-model", "plane", "-nu", "0.45", "-gamma", "5"),
+    # the cylinder's a at moderate penalties on coarse meshes: its parts summed with their signs
+    # read 0.95% and 0.90% where a was +1.37% and +1.47% (now in magnitude: 2.7% and 3.4%)
+    ("-model", "plane", "-n", "6", "-gamma", "8"),
+    ("-model", "plane", "-n", "4", "-gamma", "10"),
 ]
 
 
