@@ -114,6 +114,17 @@ def test_a_soft_base_is_solved_in_displacements_below_049(solve, nu):
     assert truth < 3e-3 and s["accuracy_predicted"] >= 0.5 * truth, (truth, s["accuracy_predicted"])
 
 
+def test_p1_on_a_coated_body_says_it_is_off(solve):
+    # its estimate read about half of p0's error: t = a, E2 = 0.7 E, n = 32 exited 0 with p0
+    # +1.6% against an estimate of 0.86%
+    t, E2 = HZ.a, 0.7 * E
+    run = solve("-order", "1", "-t", repr(t), "-E2", repr(E2), "-n", "32")
+    s = run.summary
+    _, p0 = reference(t, E2)
+    assert rel(s["p0_fe"], p0) > 0.01  # the error it names
+    assert run.exit_code == 5 and "p1-coated" in s["warnings"], run.output
+
+
 def test_a_soft_base_in_the_mixed_form_says_it_is_off(solve):
     # at nu = 0.49 the mixed form is kept (displacements lock), and its smeared interface is
     # named: inaccurate, never a silent F -2.7%
