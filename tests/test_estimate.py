@@ -4,6 +4,7 @@ again in hertz_reference.py (the sphere from its depth, the cylinder's relations
 import math
 import re
 
+import promise
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
@@ -26,14 +27,8 @@ def true_error(s: dict) -> float:
 
 
 def check_promise(run) -> tuple[float, float]:
-    """A run either says it is off (exit 5) or keeps the promise; returns (truth, estimate)."""
-    assert run.exit_code in (0, 5), run.output
-    s = run.summary
-    truth, estimate = true_error(s), s["accuracy_predicted"]
-    if run.exit_code == 0:
-        assert s["status"] == "converged" and truth <= 0.01, (truth, estimate)
-        assert estimate >= 0.5 * truth, (truth, estimate)
-    return truth, estimate
+    """The promise (promise.py) against Hertz; returns (truth, estimate)."""
+    return promise.check_promise(run, true_error(run.summary))
 
 
 # The scenes that exited 0 with an estimate 3 to 30 times low (nu near 1/2 on coarse meshes,

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+from promise import check_promise
 from scipy.optimize import minimize_scalar
 
 from hertz_reference import (
@@ -98,10 +99,8 @@ def test_a_power_law_s_p0_on_a_coarse_mesh_keeps_the_promise(solve, k, args):
     ref = punch_from_depth("power", 0.02, E, NU, R=R, k=k)
     truth = max(rel(s["p0_fe"], center_or_max_pressure("power", ref.a, R=R, k=k)),
                 rel(s["F_fe"], ref.F), rel(s["a_fe"], ref.a))
-    assert run.exit_code in (0, 5), run.output
-    assert s["accuracy_predicted"] >= 0.5 * truth, (truth, s["accuracy_predicted"])
-    if run.exit_code == 0:
-        assert truth <= 0.01, (truth, s["accuracy_predicted"])
+    truth, estimate = check_promise(run, truth)
+    assert estimate >= 0.5 * truth, (truth, estimate)  # exit 5 too
 
 
 @pytest.mark.parametrize("k", ["3", "4"])
@@ -324,9 +323,7 @@ def test_random_shape_scenes_keep_the_promise(solve, sc):
         truth = max(rel(s["F_fe"], ref.F), rel(s["a_fe"], ref.a))
         if shape != "cone":  # a cone's pressure is singular at its tip
             truth = max(truth, rel(s["p0_fe"], center_or_max_pressure(shape, ref.a, estar(E, nu), **geometry)))
-    if run.exit_code == 0:
-        assert s["status"] == "converged" and truth <= 0.01, (truth, s["accuracy_predicted"])
-        assert s["accuracy_predicted"] >= 0.5 * truth, (truth, s["accuracy_predicted"])
+    check_promise(run, truth)
 
 
 def test_the_parabola_s_sphere_estimate_is_sneddon_s_expansion(solve):
