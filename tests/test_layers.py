@@ -1,6 +1,7 @@
 """Coated bodies (-t, -E2, -nu2) against the exact limits and the layered reference written in
 layered_reference.py (Perriot and Barthel's integral equation, accurate to about 1e-8)."""
 import math
+import re
 
 import layered_reference as L
 import numpy as np
@@ -70,12 +71,14 @@ GRID = [(ta, ratio) for ta in (0.3, 1, 10) for ratio in (0.01, 0.1, 10, 100)]
 def test_intermediate_films_match_the_layered_reference(solve, t_over_a, E2_over_E):
     t, E2 = t_over_a * HZ.a, E2_over_E * E
     run = solve("-t", repr(t), "-E2", repr(E2))
-    assert run.exit_code == 0, run.output
     s = run.summary
+    # converged exactly when its own estimate is within the 1% bar
+    assert run.exit_code == (0 if s["accuracy_predicted"] <= 1e-2 else 5), run.output
     ref, p0 = reference(t, E2)
     truth = max(rel(s["F_fe"], ref.F), rel(s["a_fe"], ref.a), rel(s["p0_fe"], p0))
-    # measured: at most 0.68% (p0 at t = 0.3 a, E2 = E/10, where a stiff film's pressure peaks
-    # at 0.73 a), estimates 0.64 to 2.8 times the truth
+    # measured: at most 0.66% (p0 at t = 0.3 a, E2 = E/10, where a stiff film's pressure peaks
+    # at 0.73 a and zig-zags there: estimated 1.09%, 'inaccurate'), estimates 1.0 to 2.8 times
+    # the truth
     assert truth < 1e-2, truth
     assert 0.5 * truth <= s["accuracy_predicted"] <= max(3 * truth, 2e-3), (truth, s["accuracy_predicted"])
 
@@ -98,6 +101,55 @@ def test_a_moderate_penalty_on_a_stiff_film_says_it_is_off_or_keeps_the_promise(
     t, E2 = t_over_a * HZ.a, E2_over_E * E
     run = solve("-t", repr(t), "-E2", repr(E2), "-gamma", gamma)
     truth, estimate = check_promise(run, true_error(run.summary, t, E2))
+    assert estimate >= 0.5 * truth, (truth, estimate)  # exit 5 too
+
+
+def test_a_coated_body_s_penalty_part_is_the_penalty_s_effect(solve):
+    # t = 0.26 a, E2 = E/20 at 5 E*/h: p0 -1.45% where the half-space's penalty model read -0.07%
+    # (exit 0 once its mesh part came out small); the part is now measured by a second solve at
+    # twice the penalty: against exact contact on the same levels it read 0.93 of the effect
+    args = ("-t", "0.02", "-E2", "0.5")
+    pen = solve(*args, "-gamma", "5")
+    exact = solve(*args, "-method", "lagrange")
+    effect = pen.summary["p0_fe"] / exact.summary["p0_fe"] - 1
+    part = float(re.search(r"penalty, domain: \S+ (\S+) \S+ on p0", pen.output).group(1))
+    assert effect < -0.01 and part == pytest.approx(effect, rel=0.3), (part, effect)
+    check_promise(pen, true_error(pen.summary, 0.02, 0.5))
+
+
+# Former misses, each a run that exited 0 with an error more than twice its estimate:
+#  - thin films on a stiffer base (t = 0.03 to 0.06 a): the edge law forced over six nodes read a
+#    -0.1% to -0.19% as 0.02% to 0.09% (its misfit now adds);
+#  - stiff films on softer bases, whose pressure peaks off the axis and zig-zags there: 11 of 75
+#    runs (t = 0.2 to 0.5 a, E2 = E/50 to E/10, n = 8 to 32) read p0 +0.21% to +1.69% as 0.05%
+#    to 0.89% (the peak's zig-zag now adds).
+COATED_MISSES = [
+    ("-t", "0.00625", "-E2", "100", "-nu", "0.25", "-nu2", "0.25", "-method", "lagrange", "-n", "16"),
+    ("-t", "0.00625", "-E2", "30", "-nu", "0.25", "-nu2", "0.25", "-method", "lagrange", "-n", "16"),
+    ("-t", "0.004", "-E2", "100", "-n", "24", "-gamma", "1e4"),
+    ("-t", "0.003", "-E2", "1000", "-n", "32", "-method", "lagrange"),
+    ("-t", "0.03", "-E2", "1.0", "-n", "24", "-method", "lagrange"),
+    ("-t", "0.02", "-E2", "0.2", "-n", "8", "-method", "lagrange"),
+    ("-t", "0.04", "-E2", "0.5", "-nu", "0.4", "-nu2", "0.3", "-n", "8", "-gamma", "1e4"),
+]
+
+
+def test_a_stiff_penalty_s_noisy_edge_is_not_read_as_the_edge_law_s_misfit(solve):
+    # at 1e4 E*/h the gap next to the edge lifts between quadrature points, and the three-node
+    # fit read that noise: a thin film's a estimate was 1.24% (exit 5) where a was -0.098%; the
+    # misfit is taken from the exact partner level (measured 0.14%, 1.5 times the truth)
+    run = solve("-t", "0.00625", "-E2", "30", "-nu", "0.25", "-nu2", "0.25", "-n", "16", "-gamma", "1e4")
+    truth = true_error(run.summary, 0.00625, 30.0, 0.25, 0.25)
+    assert run.exit_code == 0 and 0.5 * truth <= run.summary["accuracy_predicted"] <= 4 * truth, run.output
+
+
+@pytest.mark.parametrize("args", COATED_MISSES, ids=[" ".join(a) for a in COATED_MISSES])
+def test_the_former_coated_misses_keep_the_promise(solve, args):
+    o = dict(zip(args[::2], args[1::2]))
+    nu = float(o.get("-nu", NU))
+    run = solve(*args)
+    truth, estimate = check_promise(run, true_error(run.summary, float(o["-t"]), float(o["-E2"]), nu,
+                                                    float(o.get("-nu2", nu))))
     assert estimate >= 0.5 * truth, (truth, estimate)  # exit 5 too
 
 
