@@ -267,15 +267,20 @@ def layers_study(quick: bool) -> list[Case]:
     # the default penalty is scaled (a penalty run says so: inaccurate)
     films = [round(0.1 * x, 6) for x in thickness]
     cases = []
+    def converges(r: float, t: float) -> bool:
+        # a stiff film up to a tenth of a contact radius thick on a substrate 100 times softer:
+        # its pressure peaks within about t of the edge, and p0's estimate reads 1.4% at n = 16;
+        # at t = 0.3 a on substrates 10 and 100 times softer the pressure peaks off the axis and
+        # zig-zags there: p0 +0.8% and +0.9%, estimated 1.6% and 1.7% (inaccurate; F and a
+        # within 0.2% in both)
+        return not ((r <= 0.01 and t <= 0.01) or (r <= 0.1 and t == 0.03))
+
     for r in ratios:
-        # a stiff film a tenth of a contact radius thick on a substrate 100 times softer: its
-        # pressure peaks within about t of the edge, and p0's estimate reads 1.4% at n = 16
-        # (inaccurate; F and a within 0.2%)
-        cases += [c.labelled(f"E2/E = {r:g}", not (r <= 0.01 and c.get("t") <= 0.01))
+        cases += [c.labelled(f"E2/E = {r:g}", converges(r, c.get("t")))
                   for c in grid(Case.of(E2=10.0 * r, method="lagrange"), t=films)]
     cases += labelled(grid(Case.of(E2=math.inf, method="lagrange"), t=films), lambda c: "rigid base")
     cases += [Case.of(t=0.03, E2=1000.0, method="lagrange").labelled("profile soft film"),
-              Case.of(t=0.03, E2=0.1, method="lagrange").labelled("profile stiff film")]
+              Case.of(t=0.03, E2=0.1, method="lagrange").labelled("profile stiff film", converges(0.01, 0.03))]
     return cases
 
 
