@@ -267,13 +267,13 @@ def layers_study(quick: bool) -> list[Case]:
     # the default penalty is scaled (a penalty run says so: inaccurate)
     films = [round(0.1 * x, 6) for x in thickness]
     cases = []
+
     def converges(r: float, t: float) -> bool:
         # a stiff film up to a tenth of a contact radius thick on a substrate 100 times softer:
         # its pressure peaks within about t of the edge, and p0's estimate reads 1.4% at n = 16;
         # at t = 0.03 (0.39 a and 0.68 a of their own contact radii) on substrates 10 and 100
-        # times softer the pressure peaks off the axis and
-        # zig-zags there: p0 +0.8% and +0.9%, estimated 1.6% and 1.7% (inaccurate; F and a
-        # within 0.2% in both)
+        # times softer the pressure peaks off the axis and zig-zags there: p0 +0.8% and +0.9%,
+        # estimated 1.6% and 1.7% (inaccurate; F and a within 0.2% in both)
         return not ((r <= 0.01 and t <= 0.01) or (r <= 0.1 and t == 0.03))
 
     for r in ratios:
