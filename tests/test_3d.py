@@ -193,7 +193,7 @@ def test_a_coarse_3d_run_keeps_its_far_field_and_its_estimate(solve, radii):
     truth = {"p0": s["p0_fe"] / ref.p0 - 1, "F": s["F_fe"] / ref.P - 1,
              "a": s["a_fe"] / (ref.b_short if x_short else ref.a_long) - 1,
              "b": s["b_fe"] / (ref.a_long if x_short else ref.b_short) - 1}
-    assert abs(truth["F"]) < 0.0012, truth  # measured +0.009%, +0.065%, +0.045%
+    assert abs(truth["F"]) < 0.0012, truth  # measured -0.004%, +0.065%, +0.046%
     for q, err in truth.items():  # every estimate holds its truth (the promise's factor 2)
         assert abs(err) <= 2 * s[f"est_err_{q}"], (q, err, s[f"est_err_{q}"])
 
