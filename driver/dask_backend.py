@@ -155,10 +155,13 @@ class DaskExecutor:
         workers = parse_local(address)
         try:
             if workers is not None:
-                # any free port for its web server: another local cluster may hold 8787
+                # any free port for its web server: another local cluster may hold 8787. Logs only
+                # at CRITICAL: on close the scheduler may leave before a slow worker's last heartbeat,
+                # which Dask logs as an ERROR with a traceback; a case's own failure comes back as
+                # its row, never through these logs
                 self.cluster = _quiet_on_ctrl_c(lambda: LocalCluster(n_workers=workers, threads_per_worker=1,
                                                                      processes=True, dashboard_address=":0",
-                                                                     silence_logs=logging.ERROR))
+                                                                     silence_logs=logging.CRITICAL))
                 self.client = Client(self.cluster)
             else:
                 timeout = connect_timeout()

@@ -245,3 +245,29 @@ def test_local_n_from_the_environment_starts_its_own_workers(tmp_path):
 def test_a_bad_local_cluster_size_is_refused(address):
     proc = cli("sweep", "kpen", "--scheduler", address, env=_env(Path("/nonexistent")))
     assert proc.returncode == 2 and "local:N" in proc.stderr
+
+
+def test_a_local_cluster_whose_scheduler_leaves_first_prints_no_traceback(tmp_path):
+    # the race a closing sweep may meet on a loaded machine: a worker's heartbeat
+    # after the scheduler has gone. Forced here by closing the scheduler first; the
+    # process then leaves at once (a clean close would wait 30 s for the scheduler)
+    script = (
+        "import os, time\n"
+        "from driver.dask_backend import DaskExecutor\n"
+        "if __name__ == '__main__':\n"
+        "    executor = DaskExecutor('local:2', say=lambda _: None)\n"
+        "    executor.cluster.sync(executor.cluster.scheduler.close)\n"
+        "    time.sleep(3)  # several heartbeats at 0.5 s\n"
+        "    os._exit(0)\n")
+    proc = subprocess.Popen([sys.executable, "-c", script], env=_env(tmp_path), cwd=tmp_path, text=True,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+    try:
+        _, stderr = proc.communicate(timeout=120)
+    finally:
+        try:  # its worker processes, left behind by the abrupt exit, share its group
+            os.killpg(proc.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        proc.wait()
+    assert proc.returncode == 0, stderr
+    assert "Traceback" not in stderr and "ERROR" not in stderr, stderr
