@@ -35,11 +35,14 @@ bench:                            ## timings: medians of interleaved runs, peers
 	bash driver/setup.sh --peers
 	$(PYTHON) -m driver bench
 
-test:                             ## the whole test suite, as CI runs it (about 10 minutes on 2 cores; writes nothing tracked)
-	$(PYTHON) -m pytest -q tests
+# one pytest worker a core, each taking whole test files: a file's shared runs and clones stay in one worker
+TEST_WORKERS = -n $(JOBS) --dist loadfile
 
-test-fast:                        ## the quick tier for the edit-run loop: pure-Python tests and a few solver runs (about 3 to 4 minutes)
-	$(PYTHON) -m pytest -q -m "not slow" tests
+test:                             ## the whole test suite, as CI runs it (about 9 minutes on 2 cores; writes nothing tracked)
+	$(PYTHON) -m pytest -q $(TEST_WORKERS) tests
+
+test-fast:                        ## the quick tier for the edit-run loop: pure-Python tests and a few solver runs
+	$(PYTHON) -m pytest -q $(TEST_WORKERS) -m "not slow" tests
 
 lint:                             ## FreeFEM compiles (every branch: dimension, order, formulation), ruff and mypy are clean
 	cd edp && for branch in "" "-DDIM=2 -DORDER=1" "-DDIM=2 -DMIXED=1" "-DDIM=3" "-DDIM=3 -DORDER=1" "-DDIM=3 -DMIXED=1"; do \

@@ -228,13 +228,14 @@ def test_a_coated_sphere_in_3d_matches_the_layered_reference(solve):
 
 
 def test_a_coated_ellipsoid_of_one_material_is_elliptical_hertz(solve):
-    """The stretched revolved mesh with its interface surface against Hertz (tests' own formulas)."""
-    run = solve("-Rx", "0.5", "-Ry", "2", "-t", "0.1", "-E2", repr(E))
+    """The stretched revolved mesh with its interface surface against Hertz (tests' own formulas),
+    at n = 6: 30 s where the default n = 8 takes 100 s, and a coarser test of the estimate."""
+    run = solve("-Rx", "0.5", "-Ry", "2", "-t", "0.1", "-E2", repr(E), "-n", "6")
     assert run.exit_code == 0, run.output
     s = run.summary
     assert s["model"] == "3d" and s["reference"] == "hertz" and s["status"] == "converged"
     ref = ellipsoid_from_depth(D, E, NU, 0.5, 2.0)
-    # measured p0 -0.01%, F +0.01%, a +0.24%, b -0.12% (estimates 0.2% and 0.4%)
+    # measured p0 -0.13%, F -0.00%, a +0.28%, b -0.20% (estimates 0.30% and 0.63%)
     for column, value in (("p0_fe", ref.p0), ("F_fe", ref.P), ("a_fe", ref.b_short), ("b_fe", ref.a_long)):
         assert rel(s[column], value) < 5e-3, column
         assert rel(s[column], value) <= 2 * s[f"est_err_{column[:-3]}"], column
