@@ -74,7 +74,8 @@ def direct_run(case: Case, outdir: Path) -> tuple[float, dict]:
 def peer_run(cmd: list[str]) -> tuple[float, dict] | None:
     """A peer script's wall time and the JSON line it prints last, or None if it failed."""
     start = time.perf_counter()
-    proc = subprocess.run(cmd, capture_output=True, text=True, check=False)
+    # the same BLAS kernels as the solver's runs (FEniCS's PETSc links Debian's OpenBLAS too)
+    proc = subprocess.run(cmd, capture_output=True, text=True, check=False, env=freefem.blas_env())
     wall = time.perf_counter() - start
     if proc.returncode != 0:
         return None

@@ -281,19 +281,26 @@ def _command_output(cmd: list[str]) -> str:
         return ""
 
 
+def _version(packages: list[str], prefix: str) -> str:
+    """The version of the first installed package whose line starts with prefix."""
+    return next((p.split()[1] for p in packages if p.startswith(prefix) and len(p.split()) > 1), "unknown")
+
+
 def record_environment(results_dir: Path) -> None:
     """What the last sweep ran on, for the report (which runs nothing itself)."""
     packages = _command_output(["dpkg-query", "-W", "-f=${Package} ${Version}\n", "freefem++",
-                                "libmumps-seq-*", "libcholmod*"]).split("\n")
+                                "libmumps-seq-*", "libcholmod*", "libopenblas0-*"]).split("\n")
     cpu = next((ln.split(":", 1)[1].strip() for ln in _command_output(["cat", "/proc/cpuinfo"]).splitlines()
                 if ln.startswith("model name")), platform.machine())
     env = {"date": time.strftime("%Y-%m-%d"),
            "commit": _command_output(["git", "-C", str(freefem.EDP_DIR), "rev-parse", "--short", "HEAD"]).strip()
            or "unknown",
            "solver code": freefem.edp_hash(),
-           "FreeFEM": next((p.split()[1] for p in packages if p.startswith("freefem++ ")), "unknown"),
-           "MUMPS": next((p.split()[1] for p in packages if p.startswith("libmumps")), "unknown"),
-           "CHOLMOD": next((p.split()[1] for p in packages if p.startswith("libcholmod")), "unknown"),
+           "FreeFEM": _version(packages, "freefem++ "),
+           "MUMPS": _version(packages, "libmumps"),
+           "CHOLMOD": _version(packages, "libcholmod"),
+           "OpenBLAS": _version(packages, "libopenblas0"),
+           "OpenBLAS kernels": freefem.freefem_env().get("OPENBLAS_CORETYPE", "detected"),
            "Python": platform.python_version(), "numpy": np.__version__, "pandas": pd.__version__,
            "CPU": f"{cpu}, {cores()} cores"}
     target = results_dir / layout.ENVIRONMENT_FILE

@@ -1,6 +1,9 @@
 """driver/freefem.py: hertz.edp's option table, exit codes and columns, read from the solver, never copied."""
 import json
 import math
+import os
+import subprocess
+from pathlib import Path
 
 import pytest
 from hypothesis import given
@@ -75,3 +78,31 @@ def test_new_options_and_columns_are_read_from_the_solver_not_listed(fake_solver
     assert row["finish"] == "rough" and row["Z_fe"] == 1.5 and row["status"] == "converged"
     assert one_error_line(cli("run", "--finish", "matte", "--results", str(tmp_path))).endswith(
         "--finish must be one of polished, rough, got 'matte'")
+
+
+SKYLAKE = "flags\t\t: fpu sse2 avx avx2 fma avx512f avx512dq avx512cd avx512bw avx512vl\n"
+
+
+@pytest.mark.parametrize("cpuinfo,kernels", [
+    ("processor\t: 0\n" + SKYLAKE + "bugs\t\t: spectre_v1\n", "SkylakeX"),
+    (SKYLAKE.replace(" avx512vl", ""), "Haswell"),  # AVX-512 without VL: not the SkylakeX kernels
+    ("flags\t\t: fpu sse2 avx avx2 fma\n", "Haswell"),
+    ("flags\t\t: fpu sse2 sse3 avx\n", None),  # no FMA: OpenBLAS's own choice
+    ("Features\t: fp asimd evtstrm aes\n", None),  # an ARM CPU has no flags line
+    ("", None),
+])
+def test_the_blas_kernels_follow_the_cpus_flags(cpuinfo, kernels):
+    assert freefem.blas_kernels(cpuinfo) == kernels
+
+
+def test_the_solver_runs_the_kernels_its_cpu_allows(tmp_path):
+    # OpenBLAS names the kernels it loaded when asked (OPENBLAS_VERBOSE=2)
+    env = freefem.freefem_env() | {"OPENBLAS_VERBOSE": "2"}
+    expected = env.get("OPENBLAS_CORETYPE")
+    assert expected == (os.environ.get("OPENBLAS_CORETYPE")
+                        or freefem.blas_kernels(Path("/proc/cpuinfo").read_text()))
+    proc = subprocess.run(freefem.command(["-n", "4", "-out", str(tmp_path)]), capture_output=True, text=True,
+                          env=env, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    if expected:
+        assert f"Core: {expected}" in proc.stdout + proc.stderr, proc.stdout + proc.stderr
