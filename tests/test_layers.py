@@ -219,7 +219,7 @@ def test_a_coated_sphere_in_3d_matches_the_layered_reference(solve):
     s = run.summary
     assert s["model"] == "3d" and s["n"] == 8 and s["status"] == "converged"
     ref, p0 = reference(0.1, 100.0)
-    # measured F -0.13%, a -0.02%, b +0.05%, p0 -0.13%; estimate 0.28%
+    # measured F -0.13%, a -0.02%, b +0.05%, p0 -0.13%; estimate 0.50%
     errors = [rel(s["F_fe"], ref.F), rel(s["a_fe"], ref.a), rel(s["b_fe"], ref.a), rel(s["p0_fe"], p0)]
     assert max(errors) < 5e-3, errors
     assert s["accuracy_predicted"] >= 0.5 * max(errors)
