@@ -54,7 +54,7 @@ MUTATIONS = [
              "growthCap = bandCenter > 0 ? 0.2 : 2;", "growthCap = bandCenter > 0 ? 0.3 : 2;",
              ["tests/test_3d.py::test_a_coarse_3d_run_keeps_its_far_field_and_its_estimate"]),
     Mutation("a pair with a member under 3 elements per radius read at its usual order", "edp/lib/steps/estimate.idp",
-             "if (min(real(n), n/ratio) < 3) p = 1.;", "",
+             "  if (min(real(n), n/ratio) < 3) return 1.;\n", "",
              ["tests/test_3d.py::test_a_3d_sphere_at_n_4_keeps_the_promise"]),
     Mutation("P1's estimate parts summed with their signs", "edp/lib/steps/estimate.idp",
              "  return order == 2\n         && ", "  return ",
