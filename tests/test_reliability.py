@@ -84,3 +84,23 @@ def test_a_fixed_point_at_its_rounding_floor_is_roundoff_not_diverged(solve):
     assert run.exit_code == 3 and s["status"] == "roundoff" and s["residual"] < 1e-10, run.output
     # beyond its stability limit it still diverges
     assert solve("-method", "fixedpoint", "-kpen", "1e4").summary["status"] == "diverged"
+
+
+# Scenes whose contact collapses to the axis: P1 locks at nu = 0.4999 (p1-locking), and the
+# medium level read the edge at 1e-9 of the contact scale. FreeFEM stops a run on a division by
+# zero or on mesh points closer than 1e-7 of its diameter (exit 8: no status, *.part files left).
+COLLAPSED = {
+    "a punch, its axis output": ("-nu", "0.4999", "-order", "1", "-shape", "punch"),
+    "a cone under its load, its band": ("-E", "75440", "-nu", "0.4999", "-shape", "cone", "-angle", "30",
+                                        "-P", "74.71", "-order", "1", "-farfield", "clamped"),
+}
+
+
+@pytest.mark.parametrize("args", COLLAPSED.values(), ids=COLLAPSED.keys())
+def test_a_contact_collapsed_to_the_axis_is_a_judged_run_with_its_files(solve, args, tmp_path):
+    run = solve(*args, "-vtk", str(tmp_path / "f.vtu"))
+    assert run.exit_code == 5, run.output
+    s = run.summary
+    assert s["status"] == "inaccurate" and "p1-locking" in s["warnings"]
+    assert sorted(p.name for p in run.outdir.iterdir()) == ["axis.csv", "history.csv", "profile.csv", "summary.csv"]
+    assert len(run.table("axis")) > 1 and len(list(tmp_path.glob("f*.vtu"))) == 3
