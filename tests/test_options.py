@@ -65,6 +65,7 @@ BAD_INPUTS = [
     (["-cont", "2"], "-cont"), (["-start", "hertz", "-model", "plane"], "-start"),
     (["-out", "/proc/forbidden"], "-out"), (["-vtk", "/tmp/x.vtk"], "-vtk"), (["-vtk", "/proc/x/f.vtu"], "-vtk"),
     (["-accuracy", "0.5"], "-accuracy"), (["-accuracy", "0.01", "-n", "8"], "-n"),
+    (["-accuracy", "0.01", "-method", "fixedpoint"], "-method fixedpoint"),  # diverged (exit 3) every time
     (["-n", "400", "-L", "10"], "-maxdof"), (["-E", "1e-300", "-d", "1e-300"], "scale"),
     (["-E", "1e-6", "-kpen", "1e15"], "-kpen"), (["-R", "1e6", "-d", "1e4", "-kpen", "1e12"], "-kpen"),
     # values that used to stop FreeFEM with a division by zero (exit 8)
