@@ -1,4 +1,5 @@
 """No false convergence, no silent write failure, limits with clear messages (hertz.edp)."""
+import math
 import subprocess
 import time
 
@@ -84,6 +85,12 @@ def test_a_fixed_point_at_its_rounding_floor_is_roundoff_not_diverged(solve):
     assert run.exit_code == 3 and s["status"] == "roundoff" and s["residual"] < 1e-10, run.output
     # beyond its stability limit it still diverges
     assert solve("-method", "fixedpoint", "-kpen", "1e4").summary["status"] == "diverged"
+
+
+def test_a_diverged_run_predicts_no_accuracy_rather_than_zero_error(solve):
+    # it has nothing to estimate: accuracy_predicted was 0, which reads as an exact answer
+    s = solve("-method", "fixedpoint", "-kpen", "1e4").summary
+    assert s["status"] == "diverged" and math.isnan(s["accuracy_predicted"]) and math.isnan(s["est_err_p0"])
 
 
 # Scenes whose contact collapses to the axis: P1 locks at nu = 0.4999 (p1-locking), and the
