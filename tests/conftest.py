@@ -122,6 +122,15 @@ def hertz(*args: str, cwd: Path | str = REPO) -> subprocess.CompletedProcess:
     return subprocess.CompletedProcess(["hertz", *args], code, out.getvalue(), err.getvalue())
 
 
+# what -out holds after a 2D run, every file whole (no *.part)
+RUN_FILES_2D = ["axis.csv", "history.csv", "profile.csv", "summary.csv"]
+
+
+def statuses_of(code: int) -> set[str]:
+    """The statuses that exit with code, from the solver's own exit table."""
+    return {status for status, e in freefem.exits().items() if e.code == code}
+
+
 def one_error_line(proc: subprocess.CompletedProcess) -> str:
     """The one line a refused command prints (exit 2, no traceback): returned for more checks."""
     lines = proc.stderr.strip().splitlines()
