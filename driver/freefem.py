@@ -122,7 +122,7 @@ def _table(text: str, header: str) -> list[list[str]]:
         raise SetupError(f"hertz.edp printed no table with the header {header!r}")
     rows = []
     for line in lines[lines.index(header) + 1:]:
-        if line.startswith("close ") or not line.strip():  # MUMPS' goodbye ends the table
+        if not line.strip():
             break
         rows.append(line)
     return list(csv.reader(io.StringIO("\n".join(rows))))
