@@ -328,3 +328,12 @@ def test_random_coated_scenes_keep_the_promise(solve, sc):
     if run.exit_code == 0:
         assert s["status"] == "converged" and truth <= 0.01, (truth, s["accuracy_predicted"])
         assert s["accuracy_predicted"] >= 0.5 * truth, (truth, s["accuracy_predicted"])
+
+
+@pytest.mark.parametrize("t", ["0.3", "1"])
+def test_a_clamped_stiff_film_on_a_soft_base_says_it_is_off_or_keeps_the_promise(solve, t):
+    # a clamped far boundary holds back the sinking a stiff film spreads over its plate length:
+    # t = 1, E2 = E/100 exited 0 with F +2.9% estimated at 0.14%, its domain part read as a/L alone
+    run = solve("-t", t, "-E2", "0.1", "-farfield", "clamped")
+    truth, estimate = check_promise(run, true_error(run.summary, float(t), 0.1))
+    assert estimate >= 0.5 * truth, (truth, estimate)  # exit 5 too
