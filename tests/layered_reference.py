@@ -324,6 +324,12 @@ def punch(c: Coating, a: float, d: float, res: Resolution = DEFAULT) -> Contact:
     return Contact(a, d, S * d, S)
 
 
+def punch_edge_coefficient(c: Coating, a: float, d: float, res: Resolution = DEFAULT) -> float:
+    """K = lim p sqrt(a - r) of a flat punch of radius a at depth d: the pressure's singular part is
+    g(a)/sqrt(a^2 - r^2) (part 2) with g(a) = (E1*/pi) d psi(1), so K = g(a)/sqrt(2a)."""
+    return c.E1s * d * solve_unit(c, c.t / a, res).psi_edge / (math.pi * math.sqrt(2 * a))
+
+
 def sphere(c: Coating, R: float, a: float, res: Resolution = DEFAULT) -> Contact:
     """Parabolic indenter z = r^2/(2R) with contact radius a (smooth edge, p(a) = 0)."""
     u = solve_unit(c, c.t / a, res)

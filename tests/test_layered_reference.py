@@ -55,3 +55,20 @@ def test_gao_s_first_order_formula_is_the_derivative_at_one_material():
 def test_the_reference_is_converged_to_its_stated_accuracy(t, E2):
     c = L.Coating(E1=E, nu1=NU, t=t, E2=E2, nu2=NU)
     assert L.error_estimate(c, 0.1).F < 1e-7
+
+
+def test_the_punch_edge_coefficient_is_sneddon_s_on_one_material_and_grows_on_a_stiff_base():
+    E, nu, a, d = 10.0, 0.3, 0.1, 0.02
+    Es = E / (1 - nu**2)
+    # one material: p = E* d / (pi sqrt(a^2 - r^2)), K = E* d / (pi sqrt(2a))
+    same = L.Coating(E1=E, nu1=nu, t=0.05, E2=E, nu2=nu)
+    assert L.punch_edge_coefficient(same, a, d) == pytest.approx(Es * d / (math.pi * math.sqrt(2 * a)), rel=1e-9)
+    # a thick film: the base seen as at a point makes psi the constant 1/(1 + K1) (part 4), and a
+    # stiffer base raises the edge's load
+    thick = L.Coating(E1=E, nu1=nu, t=10.0, E2=10 * E, nu2=nu)
+    K1 = 2 * a / (math.pi * thick.t) * L.deviation_integral(thick)
+    assert K1 < 0
+    assert L.punch_edge_coefficient(thick, a, d) == pytest.approx(Es * d / (math.pi * math.sqrt(2 * a)) / (1 + K1),
+                                                                  rel=1e-6)
+    thin = L.Coating(E1=E, nu1=nu, t=0.05, E2=10 * E, nu2=nu)
+    assert L.punch_edge_coefficient(thin, a, d) > 2 * L.punch_edge_coefficient(same, a, d)

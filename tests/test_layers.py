@@ -337,3 +337,22 @@ def test_a_clamped_stiff_film_on_a_soft_base_says_it_is_off_or_keeps_the_promise
     run = solve("-t", t, "-E2", "0.1", "-farfield", "clamped")
     truth, estimate = check_promise(run, true_error(run.summary, float(t), 0.1))
     assert estimate >= 0.5 * truth, (truth, estimate)  # exit 5 too
+
+
+@pytest.mark.parametrize("t, E2, extra", [
+    ("0.05", "100", ()),                      # t = a/2 on a base ten times stiffer, the default mesh
+    ("0.1", "30", ("-n", "32")),              # t = a, E2 = 3 E
+    ("0.03", "100", ("-method", "lagrange")),  # t = 0.3 a, exact contact
+])
+def test_a_punch_on_a_coated_body_reads_its_edge_coefficient_or_says_it_is_off(solve, t, E2, extra):
+    # K = lim p sqrt(a - r) varies with the film near the edge: read as the half-space's mean of
+    # p sqrt(a^2 - r^2) over 0.5 a to 0.9 a, t = a/2 on a base ten times stiffer exited 0 with K
+    # 64% high and an estimate of 0.12%
+    a = 0.1
+    run = solve("-shape", "punch", "-a", repr(a), "-t", t, "-E2", E2, *extra)
+    s = run.summary
+    c = L.Coating(E1=E, nu1=NU, t=float(t), E2=float(E2), nu2=NU)
+    truth = rel(s["K_fe"], L.punch_edge_coefficient(c, a, s["d"]))
+    F = L.punch(c, a, s["d"]).F
+    check_promise(run, max(truth, rel(s["F_fe"], F)))
+    assert s["est_err_K"] >= 0.5 * truth, (truth, s["est_err_K"])  # exit 5 too
