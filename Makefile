@@ -45,7 +45,7 @@ test-fast:                        ## the quick tier for the edit-run loop: pure-
 	$(PYTHON) -m pytest -q $(TEST_WORKERS) -m "not slow" tests
 
 lint:                             ## FreeFEM compiles (every branch: dimension, order, formulation), ruff and mypy are clean
-	cd edp && for branch in "" "-DDIM=2 -DORDER=1" "-DDIM=2 -DMIXED=1" "-DDIM=3" "-DDIM=3 -DORDER=1" "-DDIM=3 -DMIXED=1"; do \
+	cd edp && for branch in "" "-DDIM=2 -DORDER=1" "-DDIM=2 -DMIXED=1" "-DDIM=2 -DMIXED=2" "-DDIM=3" "-DDIM=3 -DORDER=1" "-DDIM=3 -DMIXED=1" "-DDIM=3 -DMIXED=2"; do \
 	  FreeFem++ -jc -nw -v 0 hertz.edp $$branch > /dev/null || { echo "hertz.edp $$branch does not compile"; exit 1; }; done
 	$(PYTHON) -m ruff check driver tests bench setup.py
 	$(PYTHON) -m mypy driver
