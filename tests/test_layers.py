@@ -368,3 +368,28 @@ def test_a_punch_on_a_coated_body_reads_its_edge_coefficient_or_says_it_is_off(s
     F = L.punch(c, a, s["d"]).F
     check_promise(run, max(truth, rel(s["F_fe"], F)))
     assert s["est_err_K"] >= 0.5 * truth, (truth, s["est_err_K"])  # exit 5 too
+
+
+@pytest.mark.parametrize("t, E2", [("0.01", "0.1"), ("0.05", "1")])
+def test_a_punch_on_a_stiff_film_over_a_soft_base_finds_its_lifted_face_and_says_so(solve, t, E2):
+    # the film bends under the face and part of it lifts off (t = a/10, E2 = E/100: from 0.43 a to
+    # 0.98 a; t = a/2, E2 = E/10: around the axis). The levels after the first banded the first
+    # contact stretch from the axis as the punch's edge, which cut the face's contact surface
+    # short: F half the force, a = 0 and "refine -n or widen -L"
+    a = 0.1
+    run = solve("-shape", "punch", "-a", repr(a), "-t", t, "-E2", E2)
+    s = run.summary
+    assert run.exit_code == 5 and "face-lifts" in s["warnings"], run.output
+    assert "lifts off from r = " in run.stderr and "unmeasured" not in s["warnings"], run.output
+    # a contact: no penetration beyond the penalty's (1e-3 d), and where it lifts a gap without
+    # pressure (under 1% of the peak; the recovered field ripples within 0.05 a of the singular
+    # edge)
+    p = run.table("profile")
+    face = p[p.r < a * (1 - 1e-9)]
+    lifted = face[(face.gap > 1e-3 * s["d"]) & (face.r < 0.95 * a)]
+    assert face.gap.min() > -1e-3 * s["d"] and len(lifted) > 4
+    assert lifted.p_fe.abs().max() < 1e-2 * face.p_fe.max()
+    # freed from the whole face's constraint, its force is at most the whole face's (energy:
+    # F d / 2 is the minimum over a larger set), measured 0.9% and 0.1% below it
+    full = L.punch(L.Coating(E1=E, nu1=NU, t=float(t), E2=float(E2), nu2=NU), a, s["d"]).F
+    assert 0.97 * full < s["F_fe"] < full * (1 + 1e-3), (s["F_fe"], full)
