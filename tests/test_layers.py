@@ -393,3 +393,37 @@ def test_a_punch_on_a_stiff_film_over_a_soft_base_finds_its_lifted_face_and_says
     # F d / 2 is the minimum over a larger set), measured 0.9% and 0.1% below it
     full = L.punch(L.Coating(E1=E, nu1=NU, t=float(t), E2=float(E2), nu2=NU), a, s["d"]).F
     assert 0.97 * full < s["F_fe"] < full * (1 + 1e-3), (s["F_fe"], full)
+
+
+def test_a_coated_punch_s_edge_coefficient_is_estimated_at_first_order(solve):
+    # K is a fit extrapolated to the edge, which converges at first order: read at the second,
+    # t = 3 a, E2 = E/1000, lagrange n = 32 exited 0 with K +0.53% estimated at 0.19%
+    a, t, E2 = 0.1, "0.3", "0.01"
+    run = solve("-shape", "punch", "-a", repr(a), "-t", t, "-E2", E2, "-method", "lagrange", "-n", "32")
+    s = run.summary
+    truth = rel(s["K_fe"], L.punch_edge_coefficient(L.Coating(E1=E, nu1=NU, t=0.3, E2=0.01, nu2=NU), a, s["d"]))
+    assert truth > 3e-3 and s["est_err_K"] >= 0.5 * truth, (truth, s["est_err_K"])  # measured 0.53%, 0.53%
+
+
+def test_a_punch_on_a_much_softer_base_says_its_edge_coefficient_is_not_certified(solve):
+    # t = 3 a on a base a thousand times softer, nu 0.49, -accuracy 0.01: exited 0 with K +1.01%
+    # estimated at 0.86% (the fit's bias there, which the levels do not see)
+    a = 0.1
+    run = solve("-shape", "punch", "-a", repr(a), "-t", "0.3", "-E2", "0.001", "-nu", "0.49", "-accuracy", "0.01")
+    s = run.summary
+    c = L.Coating(E1=E, nu1=0.49, t=0.3, E2=0.001, nu2=0.49)
+    assert rel(s["K_fe"], L.punch_edge_coefficient(c, a, s["d"])) > s["est_err_K"]  # what it names
+    assert run.exit_code == 5 and "edge-fit" in s["warnings"], run.output
+    assert rel(s["F_fe"], L.punch(c, a, s["d"]).F) < 5e-3  # F is not affected
+
+
+def test_forced_p2_displacements_near_incompressibility_say_they_lock(solve):
+    # both materials at nu = 0.49, a base 1000 times softer: in displacements p0 +1.01% and F
+    # +0.75% exited 0 estimated at 0.72% and 0.07%; the mixed form of the scene is within 0.1%
+    args = ("-t", "0.05", "-E2", "0.01", "-nu", "0.49", "-nu2", "0.49", "-method", "lagrange")
+    forced = solve(*args, "-formulation", "displacement")
+    assert forced.exit_code == 5 and "p2-locking" in forced.summary["warnings"], forced.output
+    assert true_error(forced.summary, 0.05, 0.01, 0.49, 0.49) > 0.01  # the error it names
+    auto = solve(*args)
+    check_promise(auto, true_error(auto.summary, 0.05, 0.01, 0.49, 0.49))
+    assert "p2-locking" not in str(auto.summary["warnings"])
