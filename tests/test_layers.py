@@ -427,3 +427,12 @@ def test_forced_p2_displacements_near_incompressibility_say_they_lock(solve):
     auto = solve(*args)
     check_promise(auto, true_error(auto.summary, 0.05, 0.01, 0.49, 0.49))
     assert "p2-locking" not in str(auto.summary["warnings"])
+
+
+def test_an_incompressible_film_on_an_incompressible_base_a_thousand_times_softer(solve):
+    # each material's pressure block is 1/lambda, floored at nu = 1/2: an absolute floor left the
+    # soft base's block far below its own scale, and the run diverged at its first solve
+    args = ("-t", "0.05", "-E2", "0.01", "-nu", "0.5", "-nu2", "0.5", "-method", "lagrange")
+    run = solve(*args)
+    truth, _ = check_promise(run, true_error(run.summary, 0.05, 0.01, 0.5, 0.5))
+    assert run.exit_code == 0 and truth < 3e-3, (truth, run.output)  # measured 0.08%

@@ -226,6 +226,9 @@ def test_uzawa_closes_the_nodes_and_matches_lagrange(solve):
 def test_uzawa_stalls_or_stops_at_a_soft_penalty_where_lagrange_does_not(solve):
     slow = solve("-method", "uzawa", "-gamma", "0.01")
     assert slow.exit_code == 3 and slow.summary["status"] in ("maxiter", "stalled")
+    # and says so on stderr, with its iterations and residual, not only in the CSV
+    line = [x for x in slow.stderr.splitlines() if x.startswith("hertz.edp: the run ended ")]
+    assert len(line) == 1 and slow.summary["status"] in line[0] and "residual" in line[0], slow.stderr
     assert solve("-method", "lagrange", "-gamma", "0.01").exit_code == 0
 
 
