@@ -109,6 +109,17 @@ def test_a_power_law_s_p0_on_a_coarse_mesh_keeps_the_promise(solve, k, args):
     assert estimate >= 0.5 * truth, (truth, estimate)  # exit 5 too
 
 
+def test_an_off_axis_p0_is_estimated_at_first_order(solve):
+    # k = 5 at n = 16 and 8 E*/h: p0 +1.11%, read 1.18% at first order and 1.01% at the second,
+    # where one nodal step more would have read it under the bar and exited 0
+    run = solve("-shape", "power", "-k", "5", "-n", "16", "-gamma", "8")
+    s = run.summary
+    ref = punch_from_depth("power", 0.02, E, NU, R=R, k=5)
+    truth = rel(s["p0_fe"], center_or_max_pressure("power", ref.a, R=R, k=5))
+    assert truth > 0.01 and s["est_err_p0"] >= truth, (truth, s["est_err_p0"])
+    assert run.exit_code == 5, run.output
+
+
 @pytest.mark.parametrize("k,gamma", [("3", "4e5"), ("4", "25600")])
 def test_a_plane_power_law_straight_at_a_stiff_penalty_under_load_ends_with_a_row(solve, k, gamma):
     # straight at a stiff penalty under -P, Newton cycles through its active sets (none among them:
