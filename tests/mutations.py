@@ -127,7 +127,7 @@ MUTATIONS = [
              ["tests/test_shapes.py::test_a_plane_power_law_straight_at_a_stiff_penalty_under_load_ends_with_a_row"]),
     Mutation("a load step without contact divides by its depth response", "edp/lib/methods/scalars.idp",
              "    real change = FD > 0 ? (loadND - F)/FD : 0;", "    real change = (loadND - F)/FD;",
-             ["tests/test_shapes.py::test_a_plane_power_law_under_load_with_accuracy_meets_it"]),
+             ["tests/test_shapes.py::test_a_load_step_without_contact_keeps_its_depth_and_ends_with_a_row"]),
     Mutation("one pressure across a coated body's interface", "edp/lib/scene.idp",
              "? (twoMaterials ? 2 : 1) : 0;", "? 1 : 0;",
              ["tests/test_layers.py::test_two_poisson_s_ratios_in_the_mixed_form_converge_at_second_order",

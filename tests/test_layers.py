@@ -92,12 +92,13 @@ def test_a_stiff_penalty_on_a_stiff_film_keeps_its_contact_radius(solve):
     assert s["status"] == "converged" and rel(s["a_fe"], ref.a) < 5e-3, (s["status"], s["a_fe"], ref.a)
 
 
-@pytest.mark.parametrize("t_over_a,E2_over_E,gamma", [(1.0, 0.1, "3"), (1.0, 0.01, "5")])
+@pytest.mark.parametrize("t_over_a,E2_over_E,gamma", [(1.0, 0.1, "3"), (1.0, 0.01, "5"), (0.2, 0.014, "5")])
 def test_a_moderate_penalty_on_a_stiff_film_says_it_is_off_or_keeps_the_promise(solve, t_over_a,
                                                                                   E2_over_E, gamma):
     # a stiff film's depth is mostly its base's sink: per penetration over d the penalty moved p0
     # and a 2 to 7 times as much as on a half-space, and with the estimate's parts summed with
-    # their signs these exited 0 with a +1.52% (estimated 0.66%) and a +1.01% (0.74%)
+    # their signs these exited 0 with a +1.52% (estimated 0.66%) and a +1.01% (0.74%). With the
+    # penalty part measured, the third still did: an error of 2.0% read 0.82% (in magnitude 4.1%)
     t, E2 = t_over_a * HZ.a, E2_over_E * E
     run = solve("-t", repr(t), "-E2", repr(E2), "-gamma", gamma)
     truth, estimate = check_promise(run, true_error(run.summary, t, E2))

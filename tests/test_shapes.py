@@ -132,6 +132,17 @@ def test_a_plane_power_law_straight_at_a_stiff_penalty_under_load_ends_with_a_ro
     assert s["iterations"] > 0 and math.isfinite(s["residual"])
 
 
+def test_a_load_step_without_contact_keeps_its_depth_and_ends_with_a_row(solve):
+    # from zero straight at 1e4 E*/h under -P, Newton steps off the indenter: a step with no node in
+    # contact has no depth response (FD = 0), and the depth update divided by it (exit 8, no
+    # files); the depth now waits for a step in contact, and the run ends maxiter with a row
+    run = solve("-model", "plane", "-P", "0.03", "-start", "zero", "-gamma", "1e4", "-maxit", "10")
+    s, history = run.summary, run.table("history")
+    assert (history["active_nodes"] == 0).any(), history  # the scene reaches that step
+    assert run.exit_code == 3 and s["status"] == "maxiter", run.output
+    assert s["iterations"] == 10 and math.isfinite(s["residual"]) and math.isfinite(s["d_fe"]), s
+
+
 @pytest.mark.parametrize("k", ["3", "4"])
 def test_a_plane_power_law_under_load_with_accuracy_meets_it(solve, k):
     # a stiffened penalty's level lost its contact: the load's depth update (k = 3) and the plane
