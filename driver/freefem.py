@@ -88,7 +88,7 @@ _COMMENTS = re.compile(r"/\*.*?\*/|//[^\n]*", re.S)
 
 
 def _source_text(path: Path) -> str:
-    """The code of one .edp/.idp file without comments and whitespace."""
+    """The code of one .edp/.idp/.cpp file without comments and whitespace."""
     return "".join(_COMMENTS.sub("", path.read_text()).split())
 
 
@@ -97,7 +97,7 @@ def edp_hash() -> str:
     Comments and whitespace do not count."""
     digest = hashlib.sha256()
     for path in sorted(EDP_DIR.rglob("*")):
-        if path.suffix in (".edp", ".idp"):
+        if path.suffix in (".edp", ".idp", ".cpp"):  # .cpp: the 3D solver plugin (edp/plugin)
             digest.update(path.relative_to(EDP_DIR).as_posix().encode())
             digest.update(_source_text(path).encode())
     return digest.hexdigest()[:12]

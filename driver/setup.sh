@@ -44,6 +44,11 @@ if ! command -v FreeFem++ >/dev/null || [ ! -e /usr/lib/freefem++/MUMPS_seq.so ]
   # one thread per case
   apt_install freefem++ libfreefem++ libfreefem++-dev libopenblas0-serial
 fi
+# the 3D solver is a FreeFEM plugin over CHOLMOD (edp/plugin): a C++ compiler and CHOLMOD's header
+if ! command -v g++ >/dev/null || [ ! -e /usr/include/suitesparse/cholmod.h ]; then
+  echo "setup: installing g++ and libsuitesparse-dev for the 3D solver plugin"
+  apt_install g++ libsuitesparse-dev
+fi
 
 # Debian's /etc/freefem++.pref points at /usr/lib/ff++/4.9/{lib,idp}, which do
 # not exist: add the real plugin and include folders once.
@@ -60,6 +65,8 @@ if ! "$py" -c "import driver, pytest, hypothesis, meshio, distributed, pyvista, 
   "$py" -m pip install -q -e "$root[test,lint]" 2>/dev/null \
     || "$py" -m pip install -q --break-system-packages -e "$root[test,lint]"
 fi
+
+sh "$root/edp/plugin/build.sh" || { echo "setup: the 3D solver plugin (edp/plugin) did not build" >&2; exit 1; }
 
 # smoke test: the solver loads its plugins and runs a coarse case
 rc=0

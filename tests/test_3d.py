@@ -215,3 +215,21 @@ def test_a_3d_sphere_at_n_4_keeps_the_promise(solve, method):
     # read at first order the estimate holds the whole of p0's error (measured 1.90% and 1.83%);
     # at 1.5 it read 1.00% of lagrange's 1.43%, an exit 5 by a hair
     assert s["est_err_p0"] >= abs(errors["p0"]), (s["est_err_p0"], truth)
+
+
+@pytest.mark.parametrize("method", ["newton", "lagrange", "uzawa"])
+def test_a_3d_level_factorizes_once_and_solves_every_step_exactly(solve, method):
+    # K is factorized once per level with the contact surface's u_z dofs last
+    # (edp/plugin/surfaceschur.cpp); a new active set is a dense Cholesky of the Schur
+    # complement there, so each step's CG ends after one re-solve, and the responses take one
+    # each. Before, CG preconditioned by an older factorization spent its budget of 22 re-solves
+    # on the 70 rows a step changes at the edge, and the level factorized again (the ellipsoid
+    # Ry/Rx = 4 at n = 8: 2 factorizations and 47 re-solves on its fine level, 4 on the coarser)
+    run = solve("-Rx", "0.5", "-Ry", "1", "-n", "4", "-method", method)
+    s = run.summary
+    assert run.exit_code in (0, 5) and s["status"] in ("converged", "inaccurate"), run.output
+    assert s["factorizations"] == 1 and s["coarse_factorizations"] == 2, s
+    # at most a re-solve for the step and one for each response (uzawa: its inner Newton steps)
+    assert s["resolves"] <= 3 * s["iterations"] + 3, s
+    errors = seed_ellipse_errors(s, 0.5, 1)
+    assert max(abs(e) for e in errors.values()) < 0.03, errors  # n = 4: within 3% of Hertz
