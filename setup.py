@@ -20,7 +20,7 @@ class BuildWithSolver(build_py):
             return
         target = Path(self.build_lib) / "driver" / "edp"
         shutil.rmtree(target, ignore_errors=True)
-        shutil.copytree(SOURCE, target, ignore=shutil.ignore_patterns("*.part", "*.csv", "*.vtu"))
+        shutil.copytree(SOURCE, target, ignore=shutil.ignore_patterns("*.part", "*.csv", "*.vtu", "*.so", "*.o"))
 
 
 setup(cmdclass={"build_py": BuildWithSolver})
