@@ -222,7 +222,7 @@ def test_a_thin_layer_on_a_rigid_base(solve, t_over_a):
     assert s["farfield"] == "clamped" and math.isnan(s["hs_sub_F"]) and s["diff_film_F"] < -0.5
 
 
-# 3D: the meridian section revolved (fe/mesh3d.idp), at its default n = 8; 6 to 50 s a run
+# 3D: the meridian section revolved (fe/mesh3d.idp), at its default n = 8; 6 to 25 s a run
 
 
 def test_a_coated_sphere_in_3d_matches_the_layered_reference(solve):
@@ -241,7 +241,7 @@ def test_a_coated_sphere_in_3d_matches_the_layered_reference(solve):
 
 def test_a_coated_ellipsoid_of_one_material_is_elliptical_hertz(solve):
     """The stretched revolved mesh with its interface surface against Hertz (tests' own formulas),
-    at n = 6: 30 s where the default n = 8 takes 100 s, and a coarser test of the estimate."""
+    at n = 6, a coarser test of the estimate (the default n = 8 takes 25 s)."""
     run = solve("-Rx", "0.5", "-Ry", "2", "-t", "0.1", "-E2", repr(E), "-n", "6")
     assert run.exit_code == 0, run.output
     s = run.summary
