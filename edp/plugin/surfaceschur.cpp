@@ -10,7 +10,7 @@
 // m = 1068): the factorization costs 1.2 times one of K + C in METIS's
 // order, a dense Cholesky of S + C_JJ 0.03 s, a solve as much as CHOLMOD's.
 //   surfaceSchurFactor(K, J)         K: half storage (sym=1); J: the dofs kept last
-//   surfaceSchurSystem(C, mask, D)   C: a matrix on J x J (or 0 x 0); mask: 0 at held dofs
+//   surfaceSchurSystem(C, mask, D)   C: nonzero on J x J only (or empty); mask: 0 at held dofs, D there
 //   surfaceSchurSolve(b, x)          x = the system's solution
 // Each returns 0, or a code: 1 CHOLMOD failed (not positive definite), 2 C
 // reaches outside J x J, 3 the dense system is not positive definite, 4
