@@ -5,10 +5,14 @@ Each 3D run takes 2 to 30 s on 2 cores; the mesh is the 2D section revolved and
 stretched to the contact ellipse, so doubling n refines every element (README, 3D).
 """
 import math
+import shutil
+import subprocess
 
 import numpy as np
 import promise
 import pytest
+
+from driver import freefem
 
 from hertz_reference import SEED, ellipsoid_from_depth, ellipsoid_from_load, sphere
 
@@ -233,3 +237,19 @@ def test_a_3d_level_factorizes_once_and_solves_every_step_exactly(solve, method)
     assert s["resolves"] <= 3 * s["iterations"] + 3, s
     errors = seed_ellipse_errors(s, 0.5, 1)
     assert max(abs(e) for e in errors.values()) < 0.03, errors  # n = 4: within 3% of Hertz
+
+
+def test_a_3d_run_whose_solver_plugin_does_not_build_says_so_in_one_line(tmp_path):
+    # a checkout without the built plugin builds it on its first 3D run (edp/plugin/build.sh);
+    # when that fails (here a broken source), the run names the plugin and what building it needs,
+    # where FreeFEM alone would print its own "Load error" lines
+    copy = tmp_path / "edp"
+    shutil.copytree(freefem.EDP_DIR, copy, ignore=shutil.ignore_patterns("*.so", "*.o"))
+    (copy / "plugin" / "surfaceschur.cpp").write_text("not C++\n")
+    proc = subprocess.run(["FreeFem++", "-nw", "-v", "0", str(copy / "hertz.edp"), "-model", "3d", "-n", "3"],
+                          capture_output=True, text=True, cwd=tmp_path, env=freefem.freefem_env(), timeout=120)
+    said = [line for line in (proc.stdout + proc.stderr).splitlines() if line.startswith("hertz.edp:")]
+    assert proc.returncode == 2, proc.stdout + proc.stderr
+    assert len(said) == 1 and "surfaceschur.cpp) did not build" in said[0] and "libsuitesparse-dev" in said[0], said
+    assert "Load error" not in proc.stdout + proc.stderr
+    assert not (copy / "plugin" / "surfaceschur.so").exists()  # nothing half-built left behind
