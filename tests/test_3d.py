@@ -253,3 +253,16 @@ def test_a_3d_run_whose_solver_plugin_does_not_build_says_so_in_one_line(tmp_pat
     assert len(said) == 1 and "surfaceschur.cpp) did not build" in said[0] and "libsuitesparse-dev" in said[0], said
     assert "Load error" not in proc.stdout + proc.stderr
     assert not (copy / "plugin" / "surfaceschur.so").exists()  # nothing half-built left behind
+
+
+def test_a_3d_run_typed_by_its_full_path_from_another_folder_loads_its_plugin(tmp_path):
+    # FreeFEM looks for a plugin from the working folder, and by a full path only along a set
+    # FF_LOADPATH: a 3D run typed as `FreeFem++ /full/path/hertz.edp` elsewhere, with no FF_LOADPATH
+    # (the driver sets one), stopped with FreeFEM's "Load error" (exit 2)
+    env = freefem.freefem_env()
+    env.pop("FF_LOADPATH", None)
+    proc = subprocess.run(["FreeFem++", "-nw", "-v", "0", str(freefem.EDP_DIR.resolve() / "hertz.edp"), "-model", "3d",
+                           "-n", "3", "-out", "out"], capture_output=True, text=True, cwd=tmp_path, env=env,
+                          timeout=300)
+    assert proc.returncode in (0, 5) and "Load error" not in proc.stdout + proc.stderr, proc.stdout + proc.stderr
+    assert (tmp_path / "out" / "summary.csv").read_text().splitlines()[1].startswith("3d,")
