@@ -15,6 +15,8 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
+import matplotlib.lines  # noqa: E402
+import matplotlib.patches  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
 import numpy as np  # noqa: E402
@@ -22,7 +24,7 @@ import pandas as pd  # noqa: E402
 
 from driver import files, layout  # noqa: E402
 from driver.errors import ReportError  # noqa: E402
-from driver.schema import max_error  # noqa: E402
+from driver.schema import ANSWERED, max_error  # noqa: E402
 
 ERRORS = {"err_p0": "p0", "err_F": "F", "err_a": "a"}
 QUANTITY_COLORS = ("#1565c0", "#c62828", "#2e7d32")
@@ -545,6 +547,62 @@ def calibration(frame: pd.DataFrame, path: Path) -> Path:
         ax.legend(fontsize=7)
     fig.suptitle(f"Error estimate calibration: {len(df)} cases with closed forms ({_scene(df) or 'many scenes'})")
     return _save(fig, path)
+
+
+# the estimate's target: from half to three times the true error
+EFFECTIVITY_BAND = (0.5, 3.0)
+MODEL_TITLES = {"axi": "axisymmetric", "plane": "plane strain", "3d": "3D"}
+
+
+def effectivity_rows(tables: dict[str, pd.DataFrame]) -> pd.DataFrame:
+    """Every answered case of every study with a reference: its true max error
+    and its effectivity, the run's own estimate (no reference) over that truth."""
+    frames = []
+    for study, table in tables.items():
+        if "accuracy_predicted" not in table:
+            continue
+        rows = table[table["status"].isin(ANSWERED)]
+        true = max_error(rows)
+        frames.append(rows.assign(study=study, true=true, effectivity=rows["accuracy_predicted"] / true))
+    rows = pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=["effectivity"])
+    return rows[np.isfinite(rows["effectivity"].astype(float)) & (rows["effectivity"] > 0)]
+
+
+def effectivity(tables: dict[str, pd.DataFrame], path: Path) -> Path:
+    """Estimate over truth for every answered case with a reference, a panel per model."""
+    rows = need(effectivity_rows(tables), "no answered rows with a reference and an estimate")
+    low, high = EFFECTIVITY_BAND
+    models = [m for m in MODEL_TITLES if m in set(rows["model"])]
+    fig, axes = plt.subplots(1, len(models), figsize=(6 * len(models), 6.2), squeeze=False)
+    cmap = plt.get_cmap("tab20")
+    colors = {study: cmap(k % 20) for k, study in enumerate(sorted(rows["study"].unique()))}
+    top = max(rows["effectivity"].max() * 1.5, 2 * high)
+    for ax, model in zip(axes[0], models):
+        g = rows[rows["model"] == model]
+        for study, h in g.groupby("study"):
+            filled = h["status"] == "converged"
+            ax.scatter(h["true"] * 100, h["effectivity"], s=22, edgecolors=colors[study],
+                       facecolors=[colors[study] if f else "none" for f in filled])
+        title = f"{MODEL_TITLES[model]}: {g['effectivity'].between(low, high).sum()} of {len(g)} in the band"
+        if model == "3d":  # the band is 3D's target from n = 5 on
+            fine = g[g["n"] >= 5]
+            title += f" ({fine['effectivity'].between(low, high).sum()} of {len(fine)} at n >= 5)"
+        ax.axhspan(low, high, color="grey", alpha=0.15)
+        ax.axhline(1, color="k", lw=1)
+        ax.set(xscale="log", yscale="log", ylim=(0.2, top), xlabel="true max |error| of p0, F, a (and b) [%]",
+               ylabel="effectivity = estimate / truth",
+               title=f"{title}, {(g['effectivity'] < low).sum()} below {low:g}")
+        ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+        ax.grid(True, alpha=0.3)
+    handles = [matplotlib.lines.Line2D([], [], ls="", marker="o", color=c, label=study) for study, c in colors.items()]
+    handles += [matplotlib.lines.Line2D([], [], ls="", marker="o", mfc="none", color="k", label="inaccurate (open)"),
+                matplotlib.patches.Patch(color="grey", alpha=0.15, label=f"target band {low:g} to {high:g}")]
+    fig.legend(handles=handles, loc="lower center", ncol=min(len(handles), 9), fontsize=8)
+    fig.suptitle(f"The run's own error estimate against the truth: {len(rows)} answered cases of every study "
+                 f"with a reference, {rows['effectivity'].between(low, high).sum()} in the band, "
+                 f"{(rows['effectivity'] < low).sum()} below {low:g} (an estimate that promised too much)")
+    fig.tight_layout(rect=(0, 0.08, 1, 1))
+    return _save(fig, path, layout=False)
 
 
 SHAPE_COLORS = {"cone 70.3": "#c62828", "cone 60": "#ef9a9a", "punch": "#6a1b9a", "power k = 3": "#2e7d32",

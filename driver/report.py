@@ -137,6 +137,10 @@ CAPTIONS = {
                    "SI units, plane strain, P1, lagrange, and -accuracy runs); the band is estimate/truth "
                    "from 0.5 to 3. Right: -accuracy X, the true error reached (dots) and the estimate "
                    "(crosses) against X; points on or below the line meet the target.",
+    "effectivity": "The run's own error estimate (no reference used) over the true max error of p0, F and a "
+                   "(and b in 3D), for every answered case of every study whose scene has a reference, a panel "
+                   "per model: the grey band is 0.5 to 3. A point below it would be an estimate that promised "
+                   "too much; above it the estimate is safe but pessimistic.",
     "ellipses": "Left: the contact outline (gap threshold along rays) for each ellipsoid at its finest mesh, "
                 "against Hertz's ellipse. Right: the pressure along both axes of the most elongated one "
                 "against p0 sqrt(1 - (s/semi-axis)^2).",
@@ -196,6 +200,7 @@ CHARTS: dict[str, Chart] = {
     "domain": lambda t, r, png: plots.domain_bias(_study(t, "domain"), png),
     "units": lambda t, r, png: plots.units_check(_study(t, "units"), png),
     "calibration": lambda t, r, png: plots.calibration(_study(t, "calibration"), png),
+    "effectivity": lambda t, r, png: plots.effectivity(t, png),
     "over_modelling": lambda t, r, png: plots.over_modelling(_study(t, "3d"), png),
     "shapes": lambda t, r, png: plots.shapes(_study(t, "shapes"), _kept(r, "shapes", "profile.csv"), png),
     "layers": lambda t, r, png: plots.layers(_study(t, "layers"), _kept(r, "layers", "profile.csv"),

@@ -55,3 +55,19 @@ def test_the_stability_cells_carry_their_status_hatch():
     hatches = [patch.get_hatch() or "" for patch in ax.patches]
     plt.close(fig)
     assert hatches == [plots.STATUS_HATCHES[s] for s in frame["status"]]
+
+
+def test_effectivity_keeps_every_answered_case_with_a_reference_and_its_ratio(tmp_path):
+    # the estimate over the largest |error| of p0, F, a and b; a diverged run, a run
+    # without an estimate and a scene without a reference (no error column) are not cases
+    rows = pd.DataFrame({"status": ["converged", "inaccurate", "diverged", "converged", "converged"],
+                         "model": ["axi", "3d", "axi", "plane", "axi"], "n": [16, 8, 16, 16, 16],
+                         "err_p0": [0.001, -0.002, 0.3, 0.004, np.nan], "err_F": [-0.004, 0.001, 0.1, 0.0, np.nan],
+                         "err_a": [0.002, 0.0005, 0.2, 0.001, np.nan],
+                         "err_b": [np.nan, -0.006, np.nan, np.nan, np.nan],
+                         "accuracy_predicted": [0.008, 0.003, 0.01, np.nan, 0.01]})
+    kept = plots.effectivity_rows({"one": rows, "other": rows.iloc[:1]})
+    assert list(kept["study"]) == ["one", "one", "other"]
+    assert kept["effectivity"].tolist() == pytest.approx([2.0, 0.5, 2.0])  # 0.008/0.004, 0.003/0.006 (b)
+    png = plots.effectivity({"one": rows}, tmp_path / "effectivity.png")
+    assert png.stat().st_size > 10_000
