@@ -551,57 +551,72 @@ def calibration(frame: pd.DataFrame, path: Path) -> Path:
 
 # the estimate's target: from half to three times the true error
 EFFECTIVITY_BAND = (0.5, 3.0)
+# the quantities a run estimates (est_err_*) and, where its scene has a reference, measures (err_*)
+ESTIMATED = ("p0", "F", "a", "b", "K")
 MODEL_TITLES = {"axi": "axisymmetric", "plane": "plane strain", "3d": "3D"}
 
 
 def effectivity_rows(tables: dict[str, pd.DataFrame]) -> pd.DataFrame:
-    """Every answered case of every study with a reference: its true max error
-    and its effectivity, the run's own estimate (no reference) over that truth."""
+    """Every distinct answered result of every study with a reference: its true
+    max error and its effectivity, the run's own estimate (no reference) over
+    that truth. Both are maxima over the same quantities, those with an
+    estimate and a reference (a punch's K too); a study's scaled copy of
+    another's scene (the same relative errors) counts once."""
     frames = []
     for study, table in tables.items():
-        if "accuracy_predicted" not in table:
-            continue
         rows = table[table["status"].isin(ANSWERED)]
-        true = max_error(rows)
+        if "accuracy_predicted" not in rows or not len(rows):
+            continue
+        quantities = [q for q in ESTIMATED if f"err_{q}" in rows and f"est_err_{q}" in rows]
+        errors = rows[[f"err_{q}" for q in quantities]].abs()
+        estimated = rows[[f"est_err_{q}" for q in quantities]].notna().to_numpy()
+        true = errors.where(estimated).max(axis=1, skipna=True)
         frames.append(rows.assign(study=study, true=true, effectivity=rows["accuracy_predicted"] / true))
     rows = pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=["effectivity"])
-    return rows[np.isfinite(rows["effectivity"].astype(float)) & (rows["effectivity"] > 0)]
+    rows = rows[np.isfinite(rows["effectivity"].astype(float)) & (rows["effectivity"] > 0)]
+    same = rows[["model", "true", "effectivity"]].astype({"true": float, "effectivity": float}).round(
+        {"true": 9, "effectivity": 6})
+    return rows[~same.duplicated()]
 
 
 def effectivity(tables: dict[str, pd.DataFrame], path: Path) -> Path:
-    """Estimate over truth for every answered case with a reference, a panel per model."""
+    """Estimate over truth for every distinct answered result with a reference, a panel per model."""
     rows = need(effectivity_rows(tables), "no answered rows with a reference and an estimate")
     low, high = EFFECTIVITY_BAND
     models = [m for m in MODEL_TITLES if m in set(rows["model"])]
-    fig, axes = plt.subplots(1, len(models), figsize=(6 * len(models), 6.2), squeeze=False)
-    cmap = plt.get_cmap("tab20")
-    colors = {study: cmap(k % 20) for k, study in enumerate(sorted(rows["study"].unique()))}
+    fig, axes = plt.subplots(1, len(models), figsize=(6 * len(models), 6.4), squeeze=False)
+    # a marker and a colour for each study: no pair depends on hue alone
+    styles = {study: (plt.get_cmap("tab10")(k % 10), "os^DvP"[k % 6])
+              for k, study in enumerate(sorted(rows["study"].unique()))}
     top = max(rows["effectivity"].max() * 1.5, 2 * high)
     for ax, model in zip(axes[0], models):
         g = rows[rows["model"] == model]
         for study, h in g.groupby("study"):
-            filled = h["status"] == "converged"
-            ax.scatter(h["true"] * 100, h["effectivity"], s=22, edgecolors=colors[study],
-                       facecolors=[colors[study] if f else "none" for f in filled])
+            color, marker = styles[study]
+            ax.scatter(h["true"] * 100, h["effectivity"], s=24, marker=marker, edgecolors=color,
+                       facecolors=[color if s == "converged" else "none" for s in h["status"]])
         title = f"{MODEL_TITLES[model]}: {g['effectivity'].between(low, high).sum()} of {len(g)} in the band"
         if model == "3d":  # the band is 3D's target from n = 5 on
             fine = g[g["n"] >= 5]
             title += f" ({fine['effectivity'].between(low, high).sum()} of {len(fine)} at n >= 5)"
         ax.axhspan(low, high, color="grey", alpha=0.15)
         ax.axhline(1, color="k", lw=1)
-        ax.set(xscale="log", yscale="log", ylim=(0.2, top), xlabel="true max |error| of p0, F, a (and b) [%]",
+        ax.set(xscale="log", yscale="log", ylim=(0.2, top),
+               xlabel="true max |relative error| of the estimated quantities [%]",
                ylabel="effectivity = estimate / truth",
                title=f"{title}, {(g['effectivity'] < low).sum()} below {low:g}")
         ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
         ax.grid(True, alpha=0.3)
-    handles = [matplotlib.lines.Line2D([], [], ls="", marker="o", color=c, label=study) for study, c in colors.items()]
-    handles += [matplotlib.lines.Line2D([], [], ls="", marker="o", mfc="none", color="k", label="inaccurate (open)"),
+    handles: list = [matplotlib.lines.Line2D([], [], ls="", marker=m, color=c, label=study)
+                     for study, (c, m) in styles.items()]
+    handles += [matplotlib.lines.Line2D([], [], ls="", marker="o", color="k", label="converged (filled)"),
+                matplotlib.lines.Line2D([], [], ls="", marker="o", mfc="none", color="k", label="inaccurate (open)"),
                 matplotlib.patches.Patch(color="grey", alpha=0.15, label=f"target band {low:g} to {high:g}")]
-    fig.legend(handles=handles, loc="lower center", ncol=min(len(handles), 9), fontsize=8)
-    fig.suptitle(f"The run's own error estimate against the truth: {len(rows)} answered cases of every study "
-                 f"with a reference, {rows['effectivity'].between(low, high).sum()} in the band, "
+    fig.legend(handles=handles, loc="lower center", ncol=min(len(handles), 8), fontsize=8)
+    fig.suptitle(f"The run's own error estimate against the truth: {len(rows)} distinct answered results of every "
+                 f"study with a reference, {rows['effectivity'].between(low, high).sum()} in the band, "
                  f"{(rows['effectivity'] < low).sum()} below {low:g} (an estimate that promised too much)")
-    fig.tight_layout(rect=(0, 0.08, 1, 1))
+    fig.tight_layout(rect=(0, 0.1, 1, 1))
     return _save(fig, path, layout=False)
 
 

@@ -137,10 +137,11 @@ CAPTIONS = {
                    "SI units, plane strain, P1, lagrange, and -accuracy runs); the band is estimate/truth "
                    "from 0.5 to 3. Right: -accuracy X, the true error reached (dots) and the estimate "
                    "(crosses) against X; points on or below the line meet the target.",
-    "effectivity": "The run's own error estimate (no reference used) over the true max error of p0, F and a "
-                   "(and b in 3D), for every answered case of every study whose scene has a reference, a panel "
-                   "per model: the grey band is 0.5 to 3. A point below it would be an estimate that promised "
-                   "too much; above it the estimate is safe but pessimistic.",
+    "effectivity": "The run's own error estimate (no reference used) over the true max error of the quantities "
+                   "that have both an estimate and a reference (p0, F and a; b in 3D; a punch's K), for every "
+                   "distinct answered result of every study (a study's copy of another's scene, with the same "
+                   "relative errors, counts once), a panel per model: the grey band is 0.5 to 3. A point below "
+                   "it would be an estimate that promised too much; above it the estimate is safe but pessimistic.",
     "ellipses": "Left: the contact outline (gap threshold along rays) for each ellipsoid at its finest mesh, "
                 "against Hertz's ellipse. Right: the pressure along both axes of the most elongated one "
                 "against p0 sqrt(1 - (s/semi-axis)^2).",

@@ -57,17 +57,26 @@ def test_the_stability_cells_carry_their_status_hatch():
     assert hatches == [plots.STATUS_HATCHES[s] for s in frame["status"]]
 
 
-def test_effectivity_keeps_every_answered_case_with_a_reference_and_its_ratio(tmp_path):
-    # the estimate over the largest |error| of p0, F, a and b; a diverged run, a run
-    # without an estimate and a scene without a reference (no error column) are not cases
-    rows = pd.DataFrame({"status": ["converged", "inaccurate", "diverged", "converged", "converged"],
-                         "model": ["axi", "3d", "axi", "plane", "axi"], "n": [16, 8, 16, 16, 16],
-                         "err_p0": [0.001, -0.002, 0.3, 0.004, np.nan], "err_F": [-0.004, 0.001, 0.1, 0.0, np.nan],
-                         "err_a": [0.002, 0.0005, 0.2, 0.001, np.nan],
-                         "err_b": [np.nan, -0.006, np.nan, np.nan, np.nan],
-                         "accuracy_predicted": [0.008, 0.003, 0.01, np.nan, 0.01]})
-    kept = plots.effectivity_rows({"one": rows, "other": rows.iloc[:1]})
-    assert list(kept["study"]) == ["one", "one", "other"]
-    assert kept["effectivity"].tolist() == pytest.approx([2.0, 0.5, 2.0])  # 0.008/0.004, 0.003/0.006 (b)
+def test_effectivity_keeps_every_distinct_answered_result_with_a_reference_and_its_ratio(tmp_path):
+    # the estimate over the largest |error| of the quantities that have both an
+    # estimate and a reference (b in 3D, K for a punch); a diverged run, a run
+    # without an estimate and a scene without a reference are not cases, and a
+    # study's copy of another's result counts once
+    nan = np.nan
+    columns = {"status": ["converged", "inaccurate", "diverged", "converged", "converged", "converged"],
+               "model": ["axi", "3d", "axi", "plane", "axi", "axi"], "n": [16, 8, 16, 16, 16, 16],
+               "err_p0": [0.001, -0.002, 0.3, 0.004, nan, nan], "err_F": [-0.004, 0.001, 0.1, 0.0, nan, 0.001],
+               "err_a": [0.002, 0.0005, 0.2, 0.001, nan, 0.0], "err_b": [nan, -0.006, nan, nan, nan, nan],
+               "err_K": [0.05, nan, nan, nan, nan, -0.003],
+               "est_err_p0": [0.008, 0.003, 0.01, nan, 0.01, nan],
+               "est_err_F": [0.001, 0.001, 0.01, nan, 0.01, 0.001],
+               "est_err_a": [0.001, 0.001, 0.01, nan, 0.01, 0.001],
+               "est_err_b": [nan, 0.003, nan, nan, nan, nan], "est_err_K": [nan, nan, nan, nan, nan, 0.006],
+               "accuracy_predicted": [0.008, 0.003, 0.01, nan, 0.01, 0.006]}
+    rows = pd.DataFrame(columns)
+    kept = plots.effectivity_rows({"one": rows, "copy": rows.iloc[:1]})
+    assert list(kept["study"]) == ["one", "one", "one"]
+    # 0.008/0.004 (K has no estimate there), 0.003/0.006 (b), 0.006/0.003 (a punch's K)
+    assert kept["effectivity"].tolist() == pytest.approx([2.0, 0.5, 2.0])
     png = plots.effectivity({"one": rows}, tmp_path / "effectivity.png")
     assert png.stat().st_size > 10_000
