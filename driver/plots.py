@@ -551,8 +551,6 @@ def calibration(frame: pd.DataFrame, path: Path) -> Path:
 
 # the estimate's target: from half to three times the true error
 EFFECTIVITY_BAND = (0.5, 3.0)
-# the quantities a run estimates (est_err_*) and, where its scene has a reference, measures (err_*)
-ESTIMATED = ("p0", "F", "a", "b", "K")
 MODEL_TITLES = {"axi": "axisymmetric", "plane": "plane strain", "3d": "3D"}
 
 
@@ -567,7 +565,9 @@ def effectivity_rows(tables: dict[str, pd.DataFrame]) -> pd.DataFrame:
         rows = table[table["status"].isin(ANSWERED)]
         if "accuracy_predicted" not in rows or not len(rows):
             continue
-        quantities = [q for q in ESTIMATED if f"err_{q}" in rows and f"est_err_{q}" in rows]
+        # the quantities the run estimates (est_err_*) and, with a reference, measures (err_*)
+        quantities = [c.removeprefix("est_") for c in rows if c.startswith("est_err_")]
+        quantities = [q.removeprefix("err_") for q in quantities if q in rows]
         errors = rows[[f"err_{q}" for q in quantities]].abs()
         estimated = rows[[f"est_err_{q}" for q in quantities]].notna().to_numpy()
         true = errors.where(estimated).max(axis=1, skipna=True)
