@@ -507,6 +507,10 @@ def ellipses(frame: pd.DataFrame, outline: pd.DataFrame, profile: pd.DataFrame, 
     return _save(fig, path)
 
 
+# the estimate's target: from half to three times the true error
+EFFECTIVITY_BAND = (0.5, 3.0)
+
+
 def calibration(frame: pd.DataFrame, path: Path) -> Path:
     """The estimate against the truth (closed forms), its effectivity, and
     -accuracy's achieved error against its target."""
@@ -522,10 +526,11 @@ def calibration(frame: pd.DataFrame, path: Path) -> Path:
         axes[1].scatter(g["true"] * 100, g["est"] / g["true"], s=22, color=colors[group], label=group)
     lim = np.array([1e-4, 30.0])
     axes[0].plot(lim, lim, "k-", lw=1, label="estimate = truth")
-    axes[0].fill_between(lim, lim / 2, lim * 3, color="grey", alpha=0.15, label="truth/2 to 3 truth")
+    low, high = EFFECTIVITY_BAND
+    axes[0].fill_between(lim, lim * low, lim * high, color="grey", alpha=0.15, label=f"truth x {low:g} to {high:g}")
     axes[0].set(xscale="log", yscale="log", xlabel="true max |error| of p0, F, a (and b) [%]",
                 ylabel="estimated max error (no Hertz) [%]", title="Estimate against truth")
-    axes[1].axhspan(0.5, 3, color="grey", alpha=0.15, label="target band 0.5 to 3")
+    axes[1].axhspan(low, high, color="grey", alpha=0.15, label=f"target band {low:g} to {high:g}")
     axes[1].axhline(1, color="k", lw=1)
     axes[1].set(xscale="log", yscale="log", xlabel="true max |error| [%]",
                 ylabel="effectivity = estimate / truth", title="Effectivity")
@@ -549,8 +554,6 @@ def calibration(frame: pd.DataFrame, path: Path) -> Path:
     return _save(fig, path)
 
 
-# the estimate's target: from half to three times the true error
-EFFECTIVITY_BAND = (0.5, 3.0)
 MODEL_TITLES = {"axi": "axisymmetric", "plane": "plane strain", "3d": "3D"}
 
 

@@ -82,7 +82,7 @@ MUTATIONS = [
              "  if (methodPenaltyError[methodAsked] && !fixedEdge && spread > 0.01) {", "  if (false) {",
              ["tests/test_physics.py::test_a_soft_penalty_bands_its_fine_level_at_its_own_edge"]),
     Mutation("a new contact Jacobian kept out of the 3D surface Schur system", "edp/lib/methods/linalg.idp",
-             " || (!systemMasked && !systemBare && schurJacobianStamp != jacobianStamp)", "",
+             " || (systemKind == PENALTYSYSTEM && schurJacobianStamp != jacobianStamp)", "",
              ["tests/test_3d.py::test_a_3d_level_factorizes_once_and_solves_every_step_exactly"]),
     Mutation("exact contact's held dofs solved as free in 3D", "edp/plugin/surfaceschur.cpp",
              "    if ((*pMask)[i] != 0) {", "    if (true) {",
