@@ -11,6 +11,9 @@ from setuptools import setup
 from setuptools.command.build_py import build_py
 
 SOURCE = Path(__file__).resolve().parent / "edp"
+# what the sdist leaves out of edp/ (MANIFEST.in's global-exclude) the wheel leaves out too
+EXCLUDED = next(line.split()[1:] for line in (SOURCE.parent / "MANIFEST.in").read_text().splitlines()
+                if line.startswith("global-exclude"))
 
 
 class BuildWithSolver(build_py):
@@ -20,7 +23,7 @@ class BuildWithSolver(build_py):
             return
         target = Path(self.build_lib) / "driver" / "edp"
         shutil.rmtree(target, ignore_errors=True)
-        shutil.copytree(SOURCE, target, ignore=shutil.ignore_patterns("*.part", "*.csv", "*.vtu", "*.so", "*.o"))
+        shutil.copytree(SOURCE, target, ignore=shutil.ignore_patterns(*EXCLUDED))
 
 
 setup(cmdclass={"build_py": BuildWithSolver})

@@ -78,6 +78,7 @@ def _fmt_3d(frame: pd.DataFrame) -> str:
     return "\n".join(lines)
 
 
+BAND = "{:g} to {:g}".format(*plots.EFFECTIVITY_BAND)  # the estimate's target, as the charts draw it
 CAPTIONS = {
     "shapes": "Left: the exact spherical cap against Hertz's parabola of the same radius at the same depth: "
               "the FE runs (markers) and Sneddon's exact sphere against Hertz (lines). Middle: F(d) of each "
@@ -135,12 +136,12 @@ CAPTIONS = {
     "calibration": "Left and middle: the run's own error estimate (no Hertz) against the true max error "
                    "of p0, F and a on scenes with closed forms (nu from -0.5 to 0.499, d/R from 1e-6 to 0.1, "
                    "SI units, plane strain, P1, lagrange, and -accuracy runs); the band is estimate/truth "
-                   "from 0.5 to 3. Right: -accuracy X, the true error reached (dots) and the estimate "
+                   f"from {BAND}. Right: -accuracy X, the true error reached (dots) and the estimate "
                    "(crosses) against X; points on or below the line meet the target.",
     "effectivity": "The run's own error estimate (no reference used) over the true max error of the quantities "
                    "that have both an estimate and a reference (p0, F and a; b in 3D; a punch's K), for every "
                    "distinct answered result of every study (a study's copy of another's scene, with the same "
-                   "relative errors, counts once), a panel per model: the grey band is 0.5 to 3. A point below "
+                   f"relative errors, counts once), a panel per model: the grey band is {BAND}. A point below "
                    "it would be an estimate that promised too much; above it the estimate is safe but pessimistic.",
     "ellipses": "Left: the contact outline (gap threshold along rays) for each ellipsoid at its finest mesh, "
                 "against Hertz's ellipse. Right: the pressure along both axes of the most elongated one "
