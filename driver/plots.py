@@ -691,7 +691,8 @@ def shapes(frame: pd.DataFrame, profiles: pd.DataFrame, path: Path) -> Path:
     ax.set_xticks(ns, [f"{n:g}" for n in ns])
     ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7)
+    if ax.get_legend_handles_labels()[0]:  # a study without lagrange rows draws none
+        ax.legend(fontsize=7)
     ax = axes[3]
     at = default[(default["d"] == 0.02) & (default["label"] != "parabola")]
     for _, row in at.iterrows():
