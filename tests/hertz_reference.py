@@ -4,6 +4,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import numpy as np
+
 from scipy.integrate import quad
 from scipy.special import ellipe, ellipk
 
@@ -33,6 +35,16 @@ def sphere_from_load(E: float, nu: float, R: float, P: float) -> Sphere:
 
 def sphere_depth(E: float, nu: float, R: float, P: float) -> float:
     return sphere_from_load(E, nu, R, P).a ** 2 / R
+
+
+def sphere_axis_stresses(zeta, p0: float, nu: float):
+    """Hertz's sigma_r and sigma_z on the axis below a sphere at depths zeta = z/a
+    (Johnson 3.45): sigma_z = -p0/(1 + zeta^2), sigma_r = p0 [-(1 + nu)(1 - zeta
+    atan(1/zeta)) + 1/(2 (1 + zeta^2))]; zeta an array or a number."""
+    zeta = np.asarray(zeta, dtype=float)
+    atan_inv = np.where(zeta > 0, np.arctan(1 / np.where(zeta > 0, zeta, 1.0)), math.pi / 2)
+    sigma_r = p0 * (-(1 + nu) * (1 - zeta * atan_inv) + 0.5 / (1 + zeta**2))
+    return sigma_r, -p0 / (1 + zeta**2)
 
 
 def sphere_deflection(r: float, a: float, d: float, R: float) -> float:

@@ -26,6 +26,20 @@ class Mutation:
 
 
 MUTATIONS = [
+    # the surface's traces and gap in array arithmetic (edp/lib/fe/surface.idp)
+    Mutation("a surface trace's samples read from the element before their own", "edp/lib/fe/surface.idp",
+             "first[k++] = e;", "first[k++] = max(e - step, 0);",
+             ["tests/test_physics.py::test_pressure_profile_follows_hertz"]),
+    Mutation("a P2 surface trace without its middle node", "edp/lib/fe/surface.idp",
+             "    t0 += t1;\n", "",
+             ["tests/test_physics.py::test_surface_deflection_follows_hertz_inside_and_outside_the_contact"]),
+    Mutation("the nodal gap against the profile, not the indenter", "edp/lib/fe/surface.idp",
+             "  h -= depthND;\n  surfaceGap", "  surfaceGap",
+             ["tests/test_physics.py::test_pressure_profile_follows_hertz"]),
+    Mutation("Hertz's axis stresses of the cylinder for the sphere", "edp/lib/reference.idp",
+             "  if (sphereLike) {\n    for (int k = 0; k < zeta.n; k++) sz[k]",
+             "  if (false) {\n    for (int k = 0; k < zeta.n; k++) sz[k]",
+             ["tests/test_physics.py::test_axis_stresses_match_hertz"]),
     # indenter shapes (edp/lib/shape.idp, indenter.idp) and coated bodies
     Mutation("the sphere solved as its parabola", "edp/lib/indenter.idp",
              "x^2*sphereFactor/(sphereRadius + sqrt(max(sphereRadius^2 - x^2, 0.)))",

@@ -4,7 +4,15 @@ import math
 import numpy as np
 import pytest
 
-from hertz_reference import SEED, cylinder_half_width, cylinder_pressure, estar, sphere, sphere_deflection
+from hertz_reference import (
+    SEED,
+    cylinder_half_width,
+    cylinder_pressure,
+    estar,
+    sphere,
+    sphere_axis_stresses,
+    sphere_deflection,
+)
 
 HZ = sphere(**SEED)
 ESTAR = estar(SEED["E"], SEED["nu"])
@@ -116,6 +124,12 @@ def test_axis_stresses_match_hertz(solve):
     peak = axis.loc[axis["tau_max"].idxmax()]
     assert peak["tau_max"] / HZ.p0 == pytest.approx(0.31, abs=0.005)  # Johnson: 0.31 p0
     assert peak["depth"] / HZ.a == pytest.approx(0.48, abs=0.03)   # at 0.48 a
+    # the file's own Hertz columns, which the charts draw, against this test's formulas at
+    # the run's own p0 (Hertz's from the inputs): to rounding at every depth
+    sigma_r, sigma_z = sphere_axis_stresses(axis["depth"] / HZ.a, HZ.p0, SEED["nu"])
+    np.testing.assert_allclose(axis["sigma_z_hertz"], sigma_z, rtol=1e-9, atol=1e-12 * HZ.p0)
+    np.testing.assert_allclose(axis["sigma_r_hertz"], sigma_r, rtol=1e-9, atol=1e-12 * HZ.p0)
+    np.testing.assert_allclose(axis["tau_max_hertz"], 0.5 * np.abs(sigma_r - sigma_z), rtol=1e-9, atol=1e-12 * HZ.p0)
 
 
 @pytest.mark.parametrize("order", ["1", "2"])
