@@ -5,7 +5,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-
 from scipy.integrate import quad
 from scipy.special import ellipe, ellipk
 
