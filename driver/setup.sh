@@ -59,7 +59,12 @@ if [ -w "$pref" ] || [ "$(id -u)" = 0 ]; then
 fi
 
 py="${PYTHON:-python3}"
-if ! "$py" -c "import driver, pytest, hypothesis, meshio, distributed, pyvista, scipy, ruff, mypy" 2>/dev/null || ! command -v hertz >/dev/null; then
+# the installed package must be this checkout's: asked from outside it, or a
+# second clone would find its own driver/ on the path from its folder, skip
+# the install, and keep `hertz` on the first clone's code
+installed="$(cd / && "$py" -c "import os, driver, pytest, hypothesis, meshio, distributed, pyvista, scipy, ruff, mypy
+print(os.path.realpath(os.path.dirname(driver.__file__)))" 2>/dev/null || true)"
+if [ "$installed" != "$(realpath "$root/driver")" ] || ! command -v hertz >/dev/null; then
   echo "setup: installing the Python package and its test tools"
   # Debian's own Python refuses pip installs into the system (PEP 668)
   "$py" -m pip install -q -e "$root[test,lint]" 2>/dev/null \

@@ -58,6 +58,8 @@ BAD_INPUTS = [
     (["-nu", "-1"], "-nu"), (["-formulation", "mixed", "-order", "1"], "-formulation"),
     (["-formulation", "mixed", "-nu", "0"], "-formulation"), (["-R", "-0.5"], "-R"),
     (["-d", "0"], "-d"), (["-d", "0.5"], "-d"), (["-R", "0.01"], "-d"), (["-n", "1"], "-n"),
+    # a radius below the default depth: the message names the radius that was typed too
+    (["-R", "0.015625"], "-R"), (["-Rx", "0.01", "-Ry", "0.02"], "-Rx"),
     (["-n", "2.5"], "-n"), (["-order", "3"], "-order"), (["-model", "sphere"], "-model"),
     (["-method", "lagrangian"], "-method"), (["-omega", "0"], "-omega"), (["-omega", "2.5"], "-omega"),
     (["-L", "5"], "-L"), (["-L", "1e5"], "-L"), (["-kpn", "1e5"], "-kpn"), (["-kpen"], "-kpen"),
