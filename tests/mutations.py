@@ -247,7 +247,7 @@ MUTATIONS = [
              "    reap_leftover(workdir)\n", "",
              ["tests/test_sweeps.py::test_a_resumed_sweep_kills_a_leftover_solver_of_its_case"]),
     Mutation("comments change the fingerprint", "driver/freefem.py",
-             '    return "".join(_COMMENTS.sub("", path.read_text()).split())', "    return path.read_text()",
+             '    return "".join(_COMMENTS.sub("", text).split())', "    return text",
              ["tests/test_repo.py::test_the_fingerprint_ignores_comments_and_whitespace"]),
     # inputs that lost data, escaped their folder, hung or gave tracebacks
     Mutation("--force deletes the old rows before their reruns land", "driver/sweeps.py",
@@ -468,8 +468,8 @@ MUTATIONS = [
              "  if (sameMaterial) {\n    real[int] at(m)", "  if (true) {\n    real[int] at(m)",
              ["tests/test_layers.py::test_a_punch_on_a_coated_body_reads_its_edge_coefficient_or_says_it_is_off"]),
     Mutation("the 3D outline stops at the first open sample", "edp/lib/steps/measure.idp",
-             "    if (rayGap(t, s) > -edgeGap) { lo = s; hi = s + reach/samples; }",
-             "    if (rayGap(t, s) > -edgeGap && lo < 0) { lo = s; hi = s + reach/samples; }",
+             "for (int i = 0; i < samples; i++) if (g[i] > -edgeGap) last = i;",
+             "for (int i = 0; i < samples; i++) if (g[i] > -edgeGap && last < 0) last = i;",
              ["tests/test_3d.py::test_the_outline_and_both_profiles_follow_the_hertz_ellipse"]),
 ]
 
