@@ -34,7 +34,7 @@ MUTATIONS = [
              "    t0 += t1;\n", "",
              ["tests/test_physics.py::test_surface_deflection_follows_hertz_inside_and_outside_the_contact"]),
     Mutation("the nodal gap against the profile, not the indenter", "edp/lib/fe/surface.idp",
-             "  h -= depthND;\n  surfaceGap", "  surfaceGap",
+             "  h -= depthND;\n  return h;", "  return h;",
              ["tests/test_physics.py::test_pressure_profile_follows_hertz"]),
     Mutation("Hertz's axis stresses of the cylinder for the sphere", "edp/lib/reference.idp",
              "  if (sphereLike) {\n    for (int k = 0; k < zeta.n; k++) sz[k]",
