@@ -27,7 +27,8 @@ import pandas as pd
 from driver import freefem, layout, schema
 from driver.cases import Case
 from driver.errors import HertzError, OptionError, RejectedError
-from driver.run import LOCK_FILE, LOG_FILE, MAX_TIMEOUT, Busy, CaseLock, rejected, run_case
+from driver.processes import LOCK_FILE, Busy, CaseLock
+from driver.run import LOG_FILE, MAX_TIMEOUT, rejected, run_case
 
 DEFAULT_TIMEOUT = 600.0
 

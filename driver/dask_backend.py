@@ -30,7 +30,8 @@ from typing import Any
 from driver import freefem
 from driver.cases import Case
 from driver.errors import HertzError, SweepError
-from driver.run import LOG_FILE, CaseLock, clear_outputs, empty_row, reap_leftover, run_case
+from driver.processes import CaseLock, reap_leftover
+from driver.run import LOG_FILE, clear_outputs, empty_row, run_case
 
 LOCAL_PREFIX = "local:"
 RETRIES = 2           # a task that raised runs again, on any worker

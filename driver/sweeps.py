@@ -34,7 +34,7 @@ from driver import files, freefem, layout, table
 from driver.cases import Case
 from driver.errors import SweepError, TableError
 from driver.executors import Executor, make_executor
-from driver.run import RUNNING
+from driver.processes import RUNNING
 from driver.schema import RETRY_STATUSES, study_columns
 from driver.studies import STUDIES, load_spec
 

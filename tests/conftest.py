@@ -26,6 +26,8 @@ import pandas as pd
 import pytest
 
 from driver import freefem, table
+from driver.cases import Case
+from driver.run import run_case
 from driver.studies import STUDIES
 from driver.sweeps import Job, run_studies
 
@@ -153,11 +155,18 @@ def fake_solver(tmp_path, monkeypatch):
     return fake
 
 
+def run_fault(mode: str, tmp_path: Path, monkeypatch, case: Case = Case.of(n=8, method="lagrange"),
+              timeout: float = 60) -> dict:
+    """run_case on the fake solver (fake_solver) in the fault mode given, in its own folder."""
+    monkeypatch.setenv("FAKE_MODE", mode)
+    return run_case(case, tmp_path / mode, timeout=timeout, summary_columns=freefem.summary_columns())
+
+
 def solvers_under(path: Path) -> list[int]:
     """Pids of running case processes (the driver's marker in their environment) that belong to
     this test: their command line or environment names its folder. Other sweeps on the machine
     are not this test's."""
-    from driver.run import MARKER
+    from driver.processes import MARKER
     found = []
     needle = str(path).encode()
     for proc in Path("/proc").iterdir():

@@ -19,7 +19,7 @@ import pytest
 
 from driver import table
 from driver.cases import Case
-from driver.run import MARKER
+from driver.processes import MARKER
 from driver.studies import STUDIES
 from driver.sweeps import Job, run_studies
 

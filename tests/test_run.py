@@ -1,8 +1,5 @@
 """driver/run.py: one case becomes a full row whatever the solver does; nothing of an
-earlier run passes for this one; runs of one case never kill each other; orphans are reaped."""
-import os
-import subprocess
-import sys
+earlier run passes for this one."""
 import time
 from pathlib import Path
 
@@ -13,7 +10,7 @@ from driver.cases import Case
 from driver.run import run_case
 from driver.schema import study_columns
 
-from conftest import REPO, cli, solvers_under
+from conftest import run_fault
 
 TINY = Case.of(n=4, L=50.0, farfield="clamped")  # ~0.1 s (inaccurate: the clamped boundary at 50 a costs 2%)
 
@@ -64,12 +61,6 @@ def test_files_of_an_earlier_run_are_removed_before_a_run(tmp_path):
     assert {"summary.csv", "profile.csv", "notes.txt"} <= left
 
 
-def run_fault(mode: str, tmp_path: Path, monkeypatch, case: Case = Case.of(n=8, method="lagrange"),
-              timeout: float = 60) -> dict:
-    monkeypatch.setenv("FAKE_MODE", mode)
-    return run_case(case, tmp_path / mode, timeout=timeout, summary_columns=freefem.summary_columns())
-
-
 @pytest.mark.parametrize("mode,expect", [
     ("crash_after_summary", "signal 11"), ("exit4_after_summary", "exited with 4"),
     ("unknown_columns", "columns differ"), ("empty_summary", "unreadable"),
@@ -87,13 +78,6 @@ def test_a_helper_holding_stdout_does_not_hold_a_finished_case(fake_solver, tmp_
     assert row["status"] == "converged" and time.perf_counter() - start < 10
 
 
-def test_a_detached_child_is_killed_with_its_case(fake_solver, tmp_path, monkeypatch):
-    row = run_fault("detached_child", tmp_path, monkeypatch)
-    assert row["status"] == "converged"
-    time.sleep(0.2)
-    assert not solvers_under(tmp_path)
-
-
 def test_an_unexecutable_solver_is_a_failed_row(fake_solver, monkeypatch, tmp_path):
     fake_solver.chmod(0o644)
     monkeypatch.setattr(freefem, "check_freefem", lambda: str(fake_solver))
@@ -104,61 +88,3 @@ def test_an_unexecutable_solver_is_a_failed_row(fake_solver, monkeypatch, tmp_pa
 def test_the_timeout_holds_against_a_solver_that_ignores_signals_in_its_group(fake_solver, tmp_path, monkeypatch):
     row = run_fault("hang", tmp_path, monkeypatch, timeout=0.5)
     assert row["status"] == "timeout", (row["error"], row["exit_code"])
-
-
-@pytest.mark.slow
-def test_two_runs_of_one_case_at_once_both_finish(fake_solver, tmp_path):
-    # the second run used to take the first's pid file for a leftover and kill it
-    env = dict(os.environ, FAKE_MODE="slow", FAKE_DELAY="3")
-    first = subprocess.Popen([sys.executable, "-m", "driver", "run", "--n", "8", "--results", str(tmp_path)],
-                             cwd=REPO, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    deadline = time.monotonic() + 30
-    while not solvers_under(tmp_path) and time.monotonic() < deadline:
-        time.sleep(0.05)
-    assert solvers_under(tmp_path), "the first run did not start"
-    second = cli("run", "--n", "8", "--results", str(tmp_path), env=dict(os.environ, FAKE_MODE=""))
-    out, err = first.communicate(timeout=60)
-    assert second.returncode == 0, second.stderr
-    assert first.returncode == 0, err  # not killed by the second
-    folders = {line.split("files: ")[1] for line in (err + second.stderr).splitlines() if "files: " in line}
-    assert len(folders) == 2 and all(Path(f).is_dir() for f in folders), folders  # a folder each
-
-
-SUBREAPER = """
-import ctypes, sys
-{imports}
-value = ctypes.c_int()
-ctypes.CDLL(None).prctl(37, ctypes.byref(value), 0, 0, 0)  # PR_GET_CHILD_SUBREAPER
-print(value.value)
-"""
-
-
-def test_importing_the_driver_changes_nothing_in_the_process():
-    # importing driver.run used to make every importer a child subreaper
-    imports = "import driver, driver.run, driver.sweeps, driver.api, driver.report, driver.cli, driver.commands.sweep"
-    proc = subprocess.run([sys.executable, "-c", SUBREAPER.format(imports=imports)], cwd=REPO,
-                          capture_output=True, text=True)
-    assert proc.stdout.strip() == "0", proc.stderr
-
-
-REAPED = """
-import os, sys, time
-from pathlib import Path
-from driver import run
-from driver.cases import Case
-assert run.become_subreaper()
-row = run.run_case(Case.of(n=8), Path(sys.argv[1]), timeout=60)
-time.sleep(2.5)  # the orphan exits after 1 s; the reaper looks every 0.5 s
-me = os.getpid()
-zombies = [p.name for p in Path("/proc").iterdir() if p.name.isdigit()
-           and (s := run._stat(p.name)) and s[0] == "Z" and s[1] == me]
-print(row["status"], len(zombies))
-"""
-
-
-@pytest.mark.slow
-def test_a_sweep_process_reaps_the_orphans_it_adopts(fake_solver, tmp_path):
-    # a helper of the case outlives it without its marker: handed to the subreaper, it must not stay a zombie
-    proc = subprocess.run([sys.executable, "-c", REAPED, str(tmp_path / "c")], cwd=REPO, capture_output=True,
-                          text=True, env=dict(os.environ, FAKE_MODE="orphan_exits"), timeout=120)
-    assert proc.stdout.split() == ["converged", "0"], proc.stdout + proc.stderr

@@ -11,7 +11,7 @@ import pytest
 from driver import table
 from driver.cases import Case
 from driver.errors import SweepError, TableError
-from driver.run import MARKER, processes_with
+from driver.processes import MARKER, processes_with
 from driver.sweeps import plan, sweep
 
 from conftest import REPO, cli, solvers_under

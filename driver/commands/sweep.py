@@ -44,7 +44,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def handle(args: argparse.Namespace) -> int:
-    from driver import run, sweeps
+    from driver import processes, sweeps
     from driver.studies import STUDIES
     if args.list:
         for name, study in STUDIES.items():
@@ -61,7 +61,7 @@ def handle(args: argparse.Namespace) -> int:
         print(f"warning: --jobs {jobs} is more than the {sweeps.cores()} cores: cases will share cores "
               "and their wall_time (column jobs records it) will grow", file=sys.stderr)
     # orphans of this sweep's cases come to this process, which kills and reaps them
-    run.become_subreaper()
+    processes.become_subreaper()
     sweeps.install_signal_handlers()
     start = time.perf_counter()
     try:
@@ -69,7 +69,7 @@ def handle(args: argparse.Namespace) -> int:
                                       args.retry_failed, progress=not args.no_progress,
                                       say=lambda m: print(m, file=sys.stderr), scheduler=args.scheduler)
     finally:
-        run.reap_adopted()
+        processes.reap_adopted()
     for o in outcomes:
         counts = o.table["status"].value_counts().to_dict() if len(o.table) else {}
         print(f"{o.study}: {len(o.table)} cases ({o.ran} run now) in "
