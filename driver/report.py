@@ -17,7 +17,7 @@ import matplotlib
 import numpy as np
 import pandas as pd
 
-from driver import freefem, layout, plots, table
+from driver import freefem, layout, plots, studytable
 from driver.errors import ReportError, TableError
 from driver.studies import STUDIES
 
@@ -29,7 +29,7 @@ def load_tables(results_dir: Path) -> dict[str, pd.DataFrame]:
     for name in STUDIES:
         path = layout.study_csv(results_dir, name)
         if path.exists() or path.is_symlink():
-            tables[name] = table.read(path)
+            tables[name] = studytable.read(path)
     return tables
 
 
@@ -181,7 +181,7 @@ Chart = Callable[[dict[str, pd.DataFrame], Path, Path], Path]
 def _kept(results_dir: Path, study: str, name: str) -> pd.DataFrame:
     """A per-case file the sweep gathered (results/<study>/<name>), empty if absent."""
     path = results_dir / study / name
-    return table.read(path) if path.exists() else pd.DataFrame()
+    return studytable.read(path) if path.exists() else pd.DataFrame()
 
 
 def _study(tables: dict[str, pd.DataFrame], name: str) -> pd.DataFrame:
@@ -250,7 +250,7 @@ def write_report(results_dir: Path, say: Callable[[str], None] = print) -> Path:
                  CAPTIONS[name], ""]
     report = results_dir / layout.REPORT_FILE
     try:
-        table.write_atomically(report, "\n".join(text))
+        studytable.write_atomically(report, "\n".join(text))
     except TableError as exc:
         raise ReportError(str(exc)) from None
     return report

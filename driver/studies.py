@@ -20,7 +20,7 @@ from pathlib import Path
 from driver import freefem
 from driver.cases import Case, Value
 from driver.errors import OptionError, SpecError, TableError
-from driver.table import check_name
+from driver.studytable import check_name
 
 DECADES = [10.0**k for k in range(1, 10)]            # absolute kpen on the seed scene
 GAMMAS = [10.0**k for k in range(-2, 7)]             # kpen in units of E*/h

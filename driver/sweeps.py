@@ -1,7 +1,7 @@
 """Run the cases of studies in parallel into their tables, row by row, resumably.
 
 Each case runs in its own folder, <results>/runs/<study>/<case_id>/. Finished
-cases are appended to <results>/<study>.csv as they arrive (table.py); running
+cases are appended to <results>/<study>.csv as they arrive (studytable.py); running
 the same command again runs only the missing cases. A rerun (--force,
 --retry-failed) replaces a case's row when it lands, so an interrupted rerun
 keeps every old row it did not replace. A lock keeps two sweeps off one table.
@@ -30,7 +30,7 @@ import numpy as np
 import pandas as pd
 from tqdm import tqdm
 
-from driver import files, freefem, layout, table
+from driver import files, freefem, layout, studytable
 from driver.cases import Case
 from driver.errors import SweepError, TableError
 from driver.executors import Executor, make_executor
@@ -91,7 +91,7 @@ def plan(study: str, cases: list[Case], results_dir: Path, force: bool = False,
     columns = study_columns(freefem.summary_columns())
     path = layout.study_csv(results_dir, study)
     unique = list({c.case_id: c for c in cases}.values())
-    frame, messages = table.prepare(path, columns, freefem.edp_hash())
+    frame, messages = studytable.prepare(path, columns, freefem.edp_hash())
     ids = {c.case_id for c in unique}
     redo: set[str] = set()
     if force:
@@ -162,7 +162,7 @@ def run_studies(jobs_list: list[Job], results_dir: Path, jobs: int, timeout: flo
     results_dir = layout.user_path(results_dir)
     freefem.check_freefem()
     for job in jobs_list:
-        table.check_name(job.study)
+        studytable.check_name(job.study)
     check_writable(results_dir)
     for job in jobs_list:
         _check_folders(results_dir, job.study)
@@ -170,7 +170,7 @@ def run_studies(jobs_list: list[Job], results_dir: Path, jobs: int, timeout: flo
     outcomes = []
     with ExitStack() as locks:
         for job in jobs_list:
-            locks.enter_context(table.StudyLock(layout.study_lock(results_dir, job.study)))
+            locks.enter_context(studytable.StudyLock(layout.study_lock(results_dir, job.study)))
         plans = []
         for job in jobs_list:
             todo, messages = plan(job.study, job.cases, results_dir, force, retry_failed)
@@ -192,9 +192,9 @@ def run_studies(jobs_list: list[Job], results_dir: Path, jobs: int, timeout: flo
                 if ran:
                     record_environment(results_dir)
                     # reruns landed: their cases' earlier rows go to stale/
-                    for message in table.prepare(path, columns, freefem.edp_hash())[1]:
+                    for message in studytable.prepare(path, columns, freefem.edp_hash())[1]:
                         say(message)
-                frame = table.read(path)
+                frame = studytable.read(path)
                 ids = {c.case_id for c in job.cases}
                 mine = frame[frame["case_id"].isin(ids)] if len(frame) else frame
                 if job.keep and len(mine):
@@ -230,7 +230,7 @@ def _run_all(study: str, todo: list[Case], path: Path, columns: list[str], workr
             case = pending.pop(future)
             row = executor.collect(future, case, workroot / case.case_id, study, columns)
             try:
-                table.append_row(path, row, columns)
+                studytable.append_row(path, row, columns)
             except TableError as exc:
                 raise SweepError(f"{exc}; the rows written so far are kept") from None
             done += 1
@@ -254,7 +254,7 @@ def gather(study: str, results_dir: Path, rows: pd.DataFrame, keep: tuple[str, .
     ids = set(rows["case_id"])
     for name in keep:
         target = target_dir / name
-        old = table.read(target) if target.exists() else pd.DataFrame()
+        old = studytable.read(target) if target.exists() else pd.DataFrame()
         parts = []
         fresh = set()
         for case_id in sorted(ids):  # one order on every run: the file changes only with its data
@@ -271,7 +271,7 @@ def gather(study: str, results_dir: Path, rows: pd.DataFrame, keep: tuple[str, .
         if parts:
             combined = pd.concat(parts, ignore_index=True).sort_values("case_id", kind="stable")
             cols = ["case_id"] + [c for c in combined.columns if c != "case_id"]
-            table.write_atomically(target, combined[cols].to_csv(index=False))
+            studytable.write_atomically(target, combined[cols].to_csv(index=False))
 
 
 def _command_output(cmd: list[str]) -> str:
@@ -304,8 +304,8 @@ def record_environment(results_dir: Path) -> None:
            "Python": platform.python_version(), "numpy": np.__version__, "pandas": pd.__version__,
            "CPU": f"{cpu}, {cores()} cores"}
     target = results_dir / layout.ENVIRONMENT_FILE
-    table.refuse_symlink(target, "environment record")
-    table.write_atomically(target, pd.DataFrame([env]).to_csv(index=False))
+    studytable.refuse_symlink(target, "environment record")
+    studytable.write_atomically(target, pd.DataFrame([env]).to_csv(index=False))
 
 
 def report_unexpected(outcomes: list[Outcome], stream=sys.stderr, limit: int = 20) -> int:

@@ -25,7 +25,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from driver import freefem, table
+from driver import freefem, studytable
 from driver.cases import Case
 from driver.run import run_case
 from driver.studies import STUDIES
@@ -99,7 +99,7 @@ def quick_results(tmp_path_factory) -> Path:
 
 @pytest.fixture(scope="session")
 def studies(quick_results) -> dict[str, pd.DataFrame]:
-    return {name: table.read(quick_results / f"{name}.csv") for name in STUDIES}
+    return {name: studytable.read(quick_results / f"{name}.csv") for name in STUDIES}
 
 
 def cli(*args: str, cwd: Path | str = REPO, env: dict[str, str] | None = None,

@@ -10,7 +10,7 @@ import time
 import pytest
 
 import driver
-from driver import table
+from driver import studytable
 
 from conftest import cli, hertz, one_error_line
 
@@ -118,7 +118,7 @@ def test_a_relative_results_folder_is_the_users_from_any_folder(tmp_path):
     (tmp_path / "s.toml").write_text('name = "tiny"\n[base]\nn = 8\n[grid]\nkpen = [1e5, 1e7]\n')
     proc = cli("sweep", "--spec", "s.toml", "--results", "rel/out", "--no-progress", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
-    rows = table.read(tmp_path / "rel" / "out" / "tiny.csv")
+    rows = studytable.read(tmp_path / "rel" / "out" / "tiny.csv")
     assert len(rows) == 2 and (rows["status"] == "converged").all()
     assert "in rel/out/tiny.csv" in proc.stdout
 
@@ -138,7 +138,7 @@ def test_more_jobs_than_cores_is_warned_and_recorded(tmp_path):
     jobs = os.cpu_count() * 4
     proc = cli("sweep", "--spec", str(spec), "--results", str(tmp_path), "--jobs", str(jobs), "--no-progress")
     assert "more than the" in proc.stderr and proc.returncode == 0
-    assert table.read(tmp_path / "j.csv")["jobs"].iloc[0] == jobs
+    assert studytable.read(tmp_path / "j.csv")["jobs"].iloc[0] == jobs
 
 
 def test_a_table_that_is_a_folder_is_one_clear_error(tmp_path):

@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from driver import table
+from driver import studytable
 from driver.cases import Case
 from driver.processes import MARKER
 from driver.studies import STUDIES
@@ -181,14 +181,14 @@ def test_a_lost_worker_loses_no_case_and_duplicates_none(cluster, tmp_path):
     os.killpg(doomed.pid, signal.SIGKILL)  # the worker and its nanny, as a machine that goes away
     out, err = sweep.communicate(timeout=120)
     assert sweep.returncode == 0, err
-    rows = table.read(tmp_path / "slow.csv")
+    rows = studytable.read(tmp_path / "slow.csv")
     assert rows["case_id"].is_unique and len(rows) == 5 and (rows["status"] == "converged").all(), rows
     case_id = lost[0].split("/slow/")[1].split()[0]
     log = (tmp_path / "runs" / "slow" / case_id / "freefem.log").read_text()
     assert case_id in set(rows["case_id"]) and "/doomed/" not in log  # run again on another worker
     again = cli(*args, env=cluster.env)
     assert again.returncode == 0 and "(0 run now)" in again.stdout, again.stdout + again.stderr
-    assert table.read(tmp_path / "slow.csv").equals(rows)
+    assert studytable.read(tmp_path / "slow.csv").equals(rows)
     assert not _solvers(cluster.tmp)
 
 
@@ -213,7 +213,7 @@ def test_ctrl_c_cancels_the_tasks_and_kills_their_solvers(cluster, tmp_path):
     assert not _solvers(cluster.tmp)  # each cancelled task killed its solver
     time.sleep(1.0)
     assert not _solvers(cluster.tmp)  # and the queued ones never started
-    assert not (tmp_path / "long.csv").exists() or len(table.read(tmp_path / "long.csv")) == 0
+    assert not (tmp_path / "long.csv").exists() or len(studytable.read(tmp_path / "long.csv")) == 0
 
 
 def test_a_task_that_fails_is_a_failure_row(cluster, tmp_path):
@@ -226,8 +226,8 @@ def test_a_task_that_fails_is_a_failure_row(cluster, tmp_path):
         future = executor.client.submit(int, "not a number", pure=False)
         row = executor.collect(future, case, tmp_path / "c", "t", columns)
     assert row["status"] == "failed" and "not a number" in row["error"] and row["case_id"] == case.case_id
-    table.append_row(tmp_path / "t.csv", row, columns)
-    assert table.check(tmp_path / "t.csv", columns).bad == []
+    studytable.append_row(tmp_path / "t.csv", row, columns)
+    assert studytable.check(tmp_path / "t.csv", columns).bad == []
 
 
 def test_local_n_from_the_environment_starts_its_own_workers(tmp_path):
@@ -236,7 +236,7 @@ def test_local_n_from_the_environment_starts_its_own_workers(tmp_path):
     proc = cli("sweep", "--spec", str(spec), "--results", str(tmp_path), "--no-progress",
                env=_env(tmp_path) | {"DASK_SCHEDULER_ADDRESS": "local:2"})
     assert proc.returncode == 0, proc.stderr
-    rows = table.read(tmp_path / "tiny.csv")
+    rows = studytable.read(tmp_path / "tiny.csv")
     assert len(rows) == 2 and (rows["status"] == "converged").all() and (rows["jobs"] == 2).all()
     assert (tmp_path / "runs" / "tiny" / rows["case_id"].iloc[0] / "summary.csv").exists()
 

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-from driver import freefem, table
+from driver import freefem, studytable
 from driver.studies import STUDIES
 
 from conftest import REPO, copy_tracked
@@ -97,7 +97,7 @@ def _env(clone: dict[str, Path]) -> dict[str, str]:
 
 def _results_current(root: Path) -> bool:
     current = freefem.edp_hash()
-    tables = [table.read(root / "results" / f"{name}.csv") for name in STUDIES]
+    tables = [studytable.read(root / "results" / f"{name}.csv") for name in STUDIES]
     return all(len(t) and set(t["edp_hash"]) == {current} for t in tables)
 
 

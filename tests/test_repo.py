@@ -7,7 +7,7 @@ import sys
 
 import pytest
 
-from driver import freefem, table
+from driver import freefem, studytable
 from driver.layout import EDP_DIR
 from driver.studies import STUDIES
 
@@ -41,7 +41,7 @@ def test_the_fingerprint_ignores_comments_and_whitespace(tmp_path, monkeypatch):
 def test_committed_results_come_from_the_current_solver_code(study):
     path = RESULTS_DIR / f"{study}.csv"
     assert path.is_file(), f"{path.name} is not committed: run 'make sweep'"
-    hashes = set(table.read(path)["edp_hash"])
+    hashes = set(studytable.read(path)["edp_hash"])
     assert hashes == {freefem.edp_hash()}, f"{path.name} is stale: run 'make sweep'"
 
 

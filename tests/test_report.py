@@ -8,7 +8,7 @@ import sys
 import matplotlib.figure
 import pytest
 
-from driver import plots, table
+from driver import plots, studytable
 from driver.errors import ReportError
 from driver.plots import sphere_cases
 from driver.report import CHARTS, LEVELS, write_report
@@ -39,7 +39,7 @@ def test_report_runs_without_freefem_and_matches_the_data(quick_results, tmp_pat
         assert data.startswith(b"\x89PNG") and len(data) > 20_000, image
     assert "FreeFEM 4.11" in text and "commit" in text  # versions, date and commit
 
-    speed = {"speed": table.read(results / "speed.csv")}
+    speed = {"speed": studytable.read(results / "speed.csv")}
     candidates = sphere_cases(speed)
     lines = [ln for ln in text.splitlines() if ln.startswith("| ") and "%" in ln.split("|")[1]]
     assert 1 <= len(lines) <= len(LEVELS)

@@ -8,7 +8,7 @@ import time
 import pandas as pd
 import pytest
 
-from driver import table
+from driver import studytable
 from driver.cases import Case
 from driver.errors import SweepError, TableError
 from driver.processes import MARKER, processes_with
@@ -32,14 +32,14 @@ def test_sweep_resumes_without_duplicates_and_retries_only_failures(tmp_path):
     retry = sweep("t", cases, tmp_path, jobs=2, timeout=120, retry_failed=True)
     assert retry.ran == 1  # only the failed one
     forced = sweep("t", cases, tmp_path, jobs=2, timeout=120, force=True)
-    assert forced.ran == 3 and table.read(tmp_path / "t.csv")["case_id"].is_unique
+    assert forced.ran == 3 and studytable.read(tmp_path / "t.csv")["case_id"].is_unique
     assert log.stat().st_mtime_ns != stamp
 
 
 def test_a_completed_forced_rerun_keeps_the_rows_it_replaced_in_stale(tmp_path):
     cases = [TINY, TINY.with_(kpen=1e6)]
     sweep("t", cases, tmp_path, jobs=2, timeout=120)
-    old = table.read(tmp_path / "t.csv")
+    old = studytable.read(tmp_path / "t.csv")
     sweep("t", cases, tmp_path, jobs=2, timeout=120, force=True)
     replaced = pd.concat([pd.read_csv(p) for p in (tmp_path / "stale").glob("t-replaced-*.csv")])
     assert sorted(replaced["case_id"]) == sorted(old["case_id"])
@@ -54,7 +54,7 @@ def test_ctrl_c_during_a_forced_rerun_keeps_every_old_row(fake_solver, tmp_path)
     first = cli("sweep", "--spec", str(spec), "--results", str(tmp_path), "--no-progress",
                 env=dict(os.environ, FAKE_MODE=""))
     assert first.returncode == 1 and "3 case(s)" in first.stderr  # inaccurate (clamped at 50 a), and said so
-    before = table.read(tmp_path / "t.csv")
+    before = studytable.read(tmp_path / "t.csv")
     assert len(before) == 3
     rerun = subprocess.Popen([sys.executable, "-m", "driver", "sweep", "--spec", str(spec), "--force",
                               "--results", str(tmp_path), "--no-progress", "--jobs", "2"], cwd=REPO,
@@ -67,7 +67,7 @@ def test_ctrl_c_during_a_forced_rerun_keeps_every_old_row(fake_solver, tmp_path)
     rerun.send_signal(signal.SIGINT)
     _, err = rerun.communicate(timeout=30)
     assert rerun.returncode == 130, err
-    after = table.read(tmp_path / "t.csv")
+    after = studytable.read(tmp_path / "t.csv")
     assert sorted(after["case_id"]) == sorted(before["case_id"])  # nothing lost
     pd.testing.assert_frame_equal(after.sort_values("case_id").reset_index(drop=True),
                                   before.sort_values("case_id").reset_index(drop=True))
@@ -93,15 +93,15 @@ def test_a_full_disk_stops_the_sweep_with_a_message_and_keeps_its_rows(tmp_path,
         if calls["n"] > 1:
             raise OSError(28, "No space left on device")
         return real_write(fd, data)
-    monkeypatch.setattr(table.os, "write", failing_write)
+    monkeypatch.setattr(studytable.os, "write", failing_write)
     with pytest.raises(SweepError, match="No space left"):
         sweep("t", [TINY, TINY.with_(kpen=1e6), TINY.with_(kpen=1e7)], tmp_path, jobs=1, timeout=120)
     monkeypatch.undo()
-    assert len(table.read(tmp_path / "t.csv")) == 1
+    assert len(studytable.read(tmp_path / "t.csv")) == 1
 
 
 def test_a_second_sweep_of_the_same_study_refuses(tmp_path):
-    with table.StudyLock(tmp_path / "t.lock"):
+    with studytable.StudyLock(tmp_path / "t.lock"):
         with pytest.raises(TableError, match="another sweep"):
             sweep("t", [TINY], tmp_path, jobs=1, timeout=60)
 
@@ -158,7 +158,7 @@ def test_killing_a_sweep_leaves_no_solver_running_and_resumes(tmp_path, sig):
     assert not solvers_under(tmp_path)  # pdeathsig, or the handler, stopped them
     again = cli("sweep", "--spec", str(spec), "--results", str(tmp_path), "--no-progress")
     assert again.returncode == 0, again.stderr
-    done = table.read(tmp_path / "slow.csv")
+    done = studytable.read(tmp_path / "slow.csv")
     assert len(done) == 2 and done["case_id"].is_unique and (done["status"] == "converged").all()
 
 

@@ -17,5 +17,5 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def handle(args: argparse.Namespace) -> int:
-    from driver.bench import bench
+    from driver.timing import bench
     return bench(args.out, args.repeat)

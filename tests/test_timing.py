@@ -1,10 +1,10 @@
-"""driver/bench.py's target lines: each speed target judged on the figures of one benchmark run."""
+"""driver/timing.py's target lines: each speed target judged on the figures of one benchmark run."""
 import math
 
 import pandas as pd
 import pytest
 
-from driver.bench import ACCURACY_FINEST, DEFAULT, ELLIPSOID, target_lines
+from driver.timing import ACCURACY_FINEST, DEFAULT, ELLIPSOID, target_lines
 
 
 def _table(default_wall=0.17, default_p0=3e-4, peers=((64, 0.15, 2.9e-4), (128, 0.41, 2.4e-4)),

@@ -1,4 +1,5 @@
-"""driver/table.py: tables validated on load, appended row by row, repaired atomically, never written through links."""
+"""driver/studytable.py: study tables validated on load, appended row by row, repaired atomically, never
+written through links."""
 import shutil
 import signal
 import subprocess
@@ -9,7 +10,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from driver import freefem, table
+from driver import freefem, studytable
 from driver.errors import TableError
 from driver.schema import study_columns
 
@@ -20,7 +21,7 @@ def _write_table(path: Path, rows: list[dict]) -> list[str]:
     columns = study_columns(freefem.summary_columns())
     for row in rows:
         good = {"status": "converged", "edp_hash": freefem.edp_hash(), "p0_fe": 1.0, "F_fe": 1.0, "a_fe": 1.0}
-        table.append_row(path, good | row, columns)
+        studytable.append_row(path, good | row, columns)
     return columns
 
 
@@ -36,7 +37,7 @@ def test_a_table_is_validated_on_load_and_bad_lines_go_aside_by_number(tmp_path)
     with open(path, "a") as f:
         f.write(",".join(good) + "\n")  # empty status
         f.write("t,half-written-row")  # cut by a kill
-    frame, messages = table.prepare(path, columns, freefem.edp_hash())
+    frame, messages = studytable.prepare(path, columns, freefem.edp_hash())
     assert sorted(frame["case_id"]) == ["a", "b"]
     assert frame.set_index("case_id").loc["a", "p0_fe"] == 2.0  # the later run of a case wins
     assert any("cut by an interrupted write" in m for m in messages)
@@ -47,7 +48,7 @@ def test_a_table_is_validated_on_load_and_bad_lines_go_aside_by_number(tmp_path)
     replaced = pd.read_csv(next((tmp_path / "stale").glob("t-replaced-*.csv")))
     assert list(replaced["case_id"]) == ["a"] and replaced["p0_fe"].iloc[0] == 1.0
     assert any("replaced by a rerun" in m for m in messages)
-    assert table.check(path, columns).bad == []  # what is left is clean
+    assert studytable.check(path, columns).bad == []  # what is left is clean
 
 
 @pytest.mark.parametrize("edit", [{"p0_fe": ""}, {"F_fe": "nan"}, {"a_fe": "inf"},
@@ -56,7 +57,7 @@ def test_a_hand_edited_answer_without_numbers_is_not_a_finished_case(tmp_path, e
     # a row marked converged with an empty p0_fe used to count as done
     path = tmp_path / "t.csv"
     columns = _write_table(path, [{"case_id": "good"}, {"case_id": "edited"} | edit])
-    frame, messages = table.prepare(path, columns, freefem.edp_hash())
+    frame, messages = studytable.prepare(path, columns, freefem.edp_hash())
     assert list(frame["case_id"]) == ["good"]
     assert any("without a finite" in m for m in messages), messages
 
@@ -64,15 +65,15 @@ def test_a_hand_edited_answer_without_numbers_is_not_a_finished_case(tmp_path, e
 def test_an_edp_hash_that_looks_like_a_number_stays_text(tmp_path):
     path = tmp_path / "t.csv"
     columns = _write_table(path, [{"case_id": "a", "edp_hash": "05426170e796"}])
-    frame, _ = table.prepare(path, columns, "05426170e796")
+    frame, _ = studytable.prepare(path, columns, "05426170e796")
     assert list(frame["case_id"]) == ["a"] and frame["edp_hash"].iloc[0] == "05426170e796"
-    assert table.read(path)["edp_hash"].iloc[0] == "05426170e796"
+    assert studytable.read(path)["edp_hash"].iloc[0] == "05426170e796"
 
 
 def test_reading_a_table_needs_no_solver_and_keeps_words_as_words(tmp_path):
     path = tmp_path / "t.csv"
     _write_table(path, [{"case_id": "a", "model": "axi", "method": "lagrange"}])
-    frame = table.read(path)
+    frame = studytable.read(path)
     assert frame["model"].iloc[0] == "axi" and frame["p0_fe"].dtype.kind == "f"
 
 
@@ -85,27 +86,27 @@ def test_a_planted_link_is_refused_not_written_through(tmp_path, kind):
     if kind == "table":
         (tmp_path / "t.csv").symlink_to(target)
         with pytest.raises(TableError, match="symbolic link"):
-            table.append_row(tmp_path / "t.csv", {"case_id": "a"}, columns)
+            studytable.append_row(tmp_path / "t.csv", {"case_id": "a"}, columns)
         with pytest.raises(TableError, match="symbolic link"):
-            table.prepare(tmp_path / "t.csv", columns, "h")
+            studytable.prepare(tmp_path / "t.csv", columns, "h")
     elif kind == "lock":
         (tmp_path / "t.lock").symlink_to(target)
         with pytest.raises(TableError, match="lock"):
-            table.StudyLock(tmp_path / "t.lock").__enter__()
+            studytable.StudyLock(tmp_path / "t.lock").__enter__()
     else:
         _write_table(tmp_path / "t.csv", [{"case_id": "a", "edp_hash": "old"}])
         (tmp_path / "stale").symlink_to(target.parent)
         with pytest.raises(TableError, match="symbolic link"):
-            table.prepare(tmp_path / "t.csv", columns, "new")
+            studytable.prepare(tmp_path / "t.csv", columns, "new")
     assert not target.exists() and list(target.parent.iterdir()) == []
 
 
 def test_a_table_that_is_a_folder_is_one_clear_error(tmp_path):
     (tmp_path / "t.csv").mkdir()
     with pytest.raises(TableError, match="not a file"):
-        table.check(tmp_path / "t.csv", study_columns(freefem.summary_columns()))
+        studytable.check(tmp_path / "t.csv", study_columns(freefem.summary_columns()))
     with pytest.raises(TableError, match="not a file"):
-        table.read(tmp_path / "t.csv")
+        studytable.read(tmp_path / "t.csv")
 
 
 # A repair whose file writes are slowed down (in chunks, announced on stdout),
@@ -113,7 +114,7 @@ def test_a_table_that_is_a_folder_is_one_clear_error(tmp_path):
 REPAIR_SCRIPT = """
 import builtins, io, sys, time
 from pathlib import Path
-from driver import table
+from driver import studytable
 real_open = io.open
 class Slow:
     def __init__(self, f, name): self.f, self.name = f, name
@@ -133,7 +134,7 @@ def slow_open(*args, **kw):
     return Slow(f, str(args[0])) if "w" in mode else f
 builtins.open = io.open = slow_open
 path, columns, current = Path(sys.argv[1]), sys.argv[2].split(","), sys.argv[3]
-table.prepare(path, columns, current)
+studytable.prepare(path, columns, current)
 """
 
 
@@ -159,7 +160,7 @@ def test_a_kill_during_a_table_repair_loses_nothing(tmp_path):
         time.sleep(delay)
         proc.send_signal(signal.SIGKILL)
         proc.wait()
-        kept = table.check(path, columns)
+        kept = studytable.check(path, columns)
         # either the old table (all rows, cut line included) or the repaired one
         assert len(kept.rows) in (len(rows), current_rows), (delay, len(kept.rows))
 
@@ -168,7 +169,7 @@ def test_a_short_write_leaves_whole_lines(tmp_path, monkeypatch):
     path = tmp_path / "t.csv"
     columns = _write_table(path, [{"case_id": "a"}])
     before = path.read_bytes()
-    monkeypatch.setattr(table.os, "write", lambda fd, data: 0)  # the disk took nothing
+    monkeypatch.setattr(studytable.os, "write", lambda fd, data: 0)  # the disk took nothing
     with pytest.raises(TableError, match="No space left"):
-        table.append_row(path, {"case_id": "b", "status": "converged"}, columns)
+        studytable.append_row(path, {"case_id": "b", "status": "converged"}, columns)
     assert path.read_bytes() == before
