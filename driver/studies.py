@@ -310,23 +310,32 @@ class Study:
     make: Callable[[bool], list[Case]]
     keep: tuple[str, ...] = ()  # per-case files gathered into results/<name>/<file>
     repeats: int = 1            # runs per case: wall_time is their median (the speed study)
+    charts: tuple[str, ...] = ()  # its charts in the report, drawn by driver/charts/ under these names
 
 
 STUDIES = {s.name: s for s in [
-    Study("kpen", kpen_study),
-    Study("mesh", mesh_study),
-    Study("domain", domain_study),
+    Study("kpen", kpen_study, charts=("penalty",)),
+    Study("mesh", mesh_study, charts=("mesh",)),
+    Study("domain", domain_study, charts=("domain",)),
     Study("plane", plane_study),
-    Study("stability", stability_study),
+    Study("stability", stability_study, charts=("stability",)),
     Study("speed", speed_study, repeats=3),
-    Study("units", units_study),
-    Study("figures", figures_study, keep=("profile.csv", "axis.csv")),
-    Study("calibration", calibration_study),
-    Study("3d", study_3d, keep=("profile.csv", "profile_y.csv", "outline.csv")),
-    Study("shapes", shapes_study, keep=("profile.csv",)),
-    Study("layers", layers_study, keep=("profile.csv", "axis.csv")),
-    Study("loading", loading_study),
+    Study("units", units_study, charts=("units",)),
+    Study("figures", figures_study, keep=("profile.csv", "axis.csv"),
+          charts=("pressure_profiles", "seed_figure1", "axis_stresses")),
+    Study("calibration", calibration_study, charts=("calibration",)),
+    Study("3d", study_3d, keep=("profile.csv", "profile_y.csv", "outline.csv"), charts=("over_modelling", "ellipses")),
+    Study("shapes", shapes_study, keep=("profile.csv",), charts=("shapes",)),
+    Study("layers", layers_study, keep=("profile.csv", "axis.csv"), charts=("layers",)),
+    Study("loading", loading_study, charts=("loading",)),
 ]}
+# the charts that read every study's rows, first in the report
+SUMMARY_CHARTS = ("accuracy_vs_speed", "effectivity", "zigzag")
+
+
+def report_charts() -> list[str]:
+    """The report's charts in the order it shows them: the summaries, then each study's."""
+    return [*SUMMARY_CHARTS, *(name for study in STUDIES.values() for name in study.charts)]
 
 
 @dataclass(frozen=True)

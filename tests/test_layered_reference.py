@@ -1,10 +1,11 @@
-"""The coated-body reference (layered_reference.py) against what is known without it: its two
+"""The coated-body reference (driver/references/layered.py) against what is known without it: its two
 derivations of the surface compliance, the homogeneous body, the thick and thin limits, and
 Gao, Chiu and Lee's first-order formula. A reference the solver's tests lean on must bite too."""
 import math
 
-import layered_reference as L
 import pytest
+
+from driver.references import layered as L
 
 from hertz_reference import estar, sphere
 

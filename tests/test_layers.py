@@ -1,14 +1,15 @@
 """Coated bodies (-t, -E2, -nu2) against the exact limits and the layered reference written in
-layered_reference.py (Perriot and Barthel's integral equation, accurate to about 1e-8)."""
+driver/references/layered.py (Perriot and Barthel's integral equation, accurate to about 1e-8)."""
 import math
 import re
 
-import layered_reference as L
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from promise import check_promise
+
+from driver.references import layered as L
 
 from hertz_reference import ellipsoid_from_depth, sphere
 

@@ -8,9 +8,9 @@ import sys
 import matplotlib.figure
 import pytest
 
-from driver import plots, studytable
+from driver import charts, studytable
+from driver.charts.common import sphere_cases
 from driver.errors import ReportError
-from driver.plots import sphere_cases
 from driver.report import CHARTS, LEVELS, write_report
 from driver.studies import STUDIES
 
@@ -111,8 +111,8 @@ def test_a_full_disk_is_one_clear_error_and_keeps_the_charts(quick_results, tmp_
 
 
 def test_no_tables_at_all_is_one_clear_error(tmp_path):
-    with pytest.raises(plots.NoData):
-        plots.sphere_cases({})
+    with pytest.raises(charts.NoData):
+        sphere_cases({})
     with pytest.raises(ReportError, match="no study rows"):
         write_report(tmp_path)
     assert list(tmp_path.iterdir()) == []
@@ -124,6 +124,6 @@ def test_the_report_imports_no_run_or_sweep_machinery():
             "print(sorted(m for m in sys.modules if m.startswith('driver')))")
     proc = subprocess.run([sys.executable, "-c", code], cwd=REPO, capture_output=True, text=True)
     loaded = proc.stdout
-    assert proc.returncode == 0 and "driver.plots" in loaded, proc.stderr
+    assert proc.returncode == 0 and "driver.charts" in loaded, proc.stderr
     for machinery in ("driver.run", "driver.sweeps", "driver.executors", "driver.dask_backend", "driver.api"):
         assert f"'{machinery}'" not in loaded, machinery

@@ -190,7 +190,7 @@ def test_the_shapes_study_keeps_sneddon_s_laws(studies):
 
 
 def test_the_layers_study_matches_the_layered_reference(studies):
-    import layered_reference as L
+    from driver.references import layered as L
     df = rows(studies["layers"], status=("converged",))
     assert len(df) >= 6
     for _, r in df.iterrows():

@@ -1,4 +1,4 @@
-"""driver/plots.py: charts a colour-blind reader can read."""
+"""driver/charts/: charts a colour-blind reader can read."""
 import itertools
 
 import matplotlib.pyplot as plt
@@ -7,7 +7,8 @@ import pandas as pd
 import pytest
 from matplotlib.colors import to_rgb
 
-from driver import plots
+from driver.charts import CHARTS, common, effectivity, stability
+from driver.studies import report_charts
 
 # Machado, Oliveira and Fernandes (2009), full severity, on linear RGB
 VISION = {
@@ -35,26 +36,26 @@ def _lab(color: str, vision: str) -> np.ndarray:
 @pytest.mark.parametrize("vision", list(VISION))
 def test_converged_and_inaccurate_are_far_apart_for_every_reader(vision):
     # olive against green (delta E 32 for protanopes); a clear difference is above 50
-    colors = plots.STATUS_COLORS
+    colors = common.STATUS_COLORS
     distance = np.linalg.norm(_lab(colors["converged"], vision) - _lab(colors["inaccurate"], vision))
     assert distance > 50, distance
 
 
 def test_statuses_that_colour_alone_cannot_separate_differ_by_hatch():
-    hatches = plots.STATUS_HATCHES
-    assert set(hatches) == set(plots.STATUS_COLORS) and len(set(hatches.values())) == len(hatches)
-    for a, b in itertools.combinations(plots.STATUS_COLORS, 2):
-        close = min(np.linalg.norm(_lab(plots.STATUS_COLORS[a], v) - _lab(plots.STATUS_COLORS[b], v)) for v in VISION)
+    hatches = common.STATUS_HATCHES
+    assert set(hatches) == set(common.STATUS_COLORS) and len(set(hatches.values())) == len(hatches)
+    for a, b in itertools.combinations(common.STATUS_COLORS, 2):
+        close = min(np.linalg.norm(_lab(common.STATUS_COLORS[a], v) - _lab(common.STATUS_COLORS[b], v)) for v in VISION)
         assert close > 20 or hatches[a] != hatches[b], (a, b)
 
 
 def test_the_stability_cells_carry_their_status_hatch():
     frame = pd.DataFrame({"x": [1, 2, 3], "y": ["a", "a", "a"], "status": ["converged", "inaccurate", "diverged"]})
     fig, ax = plt.subplots()
-    plots._grid(ax, frame, "x", "y", lambda row: "")
+    stability._grid(ax, frame, "x", "y", lambda row: "")
     hatches = [patch.get_hatch() or "" for patch in ax.patches]
     plt.close(fig)
-    assert hatches == [plots.STATUS_HATCHES[s] for s in frame["status"]]
+    assert hatches == [common.STATUS_HATCHES[s] for s in frame["status"]]
 
 
 def test_effectivity_keeps_every_distinct_answered_result_with_a_reference_and_its_ratio(tmp_path):
@@ -74,9 +75,17 @@ def test_effectivity_keeps_every_distinct_answered_result_with_a_reference_and_i
                "est_err_b": [nan, 0.003, nan, nan, nan, nan], "est_err_K": [nan, nan, nan, nan, nan, 0.006],
                "accuracy_predicted": [0.008, 0.003, 0.01, nan, 0.01, 0.006]}
     rows = pd.DataFrame(columns)
-    kept = plots.effectivity_rows({"one": rows, "copy": rows.iloc[:1]})
+    kept = effectivity.effectivity_rows({"one": rows, "copy": rows.iloc[:1]})
     assert list(kept["study"]) == ["one", "one", "one"]
     # 0.008/0.004 (K has no estimate there), 0.003/0.006 (b), 0.006/0.003 (a punch's K)
     assert kept["effectivity"].tolist() == pytest.approx([2.0, 0.5, 2.0])
-    png = plots.effectivity({"one": rows}, tmp_path / "effectivity.png")
+    png = effectivity.effectivity({"one": rows}, tmp_path / "effectivity.png")
     assert png.stat().st_size > 10_000
+
+
+def test_every_chart_a_study_names_is_drawn_by_one_module_and_every_drawn_chart_is_named():
+    # a chart is registered beside its study: studies.py names it, a module of driver/charts/ draws it
+    named = report_charts()
+    assert len(named) == len(set(named)), named
+    assert set(named) == set(CHARTS), set(named) ^ set(CHARTS)
+    assert all(chart.caption.strip() for chart in CHARTS.values())

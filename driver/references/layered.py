@@ -1,8 +1,9 @@
 """Frictionless contact of a rigid axisymmetric indenter on a coated half-space, written
-independently of the solver for the tests: an elastic film (E1, nu1, thickness t), the body
-the indenter touches, perfectly bonded to an elastic substrate half-space (E2, nu2) or to a
-rigid base (E2 = inf). The method is the exact integral formulation of Perriot & Barthel,
-J. Mater. Res. 19 (2004) 600, solved by Nystrom quadrature.
+independently of the solver (edp/ never reads it), for the tests and the layers chart: an
+elastic film (E1, nu1, thickness t), the body the indenter touches, perfectly bonded to an
+elastic substrate half-space (E2, nu2) or to a rigid base (E2 = inf). The method is the exact
+integral formulation of Perriot & Barthel, J. Mater. Res. 19 (2004) 600, solved by Nystrom
+quadrature.
 
 1. Surface response of the coated body (Hankel space)
    Hankel pair: f~(k) = int_0^inf f(r) J0(kr) r dr, f(r) = int_0^inf f~(k) J0(kr) k dk.
@@ -85,9 +86,9 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.polynomial.legendre import leggauss
-from scipy.integrate import quad
-from scipy.linalg import expm, null_space
-from scipy.optimize import brentq
+
+# scipy (a test dependency) is imported where it is used: the layers chart needs only the
+# effective modulus, which is numpy alone, so the package does not depend on scipy
 
 
 def estar(E: float, nu: float) -> float:
@@ -184,6 +185,7 @@ def surface_factor_by_propagator(u: float, c: Coating) -> float:
     unit-pressure surface, continuity of U, W, G tau, G sigma into the substrate's decaying
     solutions (null space of (P + I)^2), or U = W = 0 on a rigid base. For checking (2); loses
     digits as e^{2u}, so for u up to ~10."""
+    from scipy.linalg import expm, null_space
     prop = expm(_navier_matrix(c.nu1) * u)
     sigma0 = -1.0  # sigma_zz = -p at the surface, tau = 0 there
     if c.rigid_base:
@@ -227,7 +229,7 @@ def _q_rule(c: Coating, eps: float, res: Resolution) -> tuple[np.ndarray, np.nda
     levels = max(0, math.ceil(math.log2(res.u_panel / floor)))
     edges_u = [0.0] + [res.u_panel * 2.0**-j for j in range(levels, 0, -1)]
     edges_u += [res.u_panel * j for j in range(1, math.ceil(res.u_max / res.u_panel) + 1)]
-    edges = []
+    edges: list[float] = []
     for lo, hi in zip(edges_u[:-1], edges_u[1:]):
         n = max(1, math.ceil((hi - lo) / eps / res.q_panel))
         edges.extend(np.linspace(lo / eps, hi / eps, n + 1)[:-1])
@@ -340,6 +342,7 @@ def _radius_where(f, target: float, guess: float, power: float) -> float:
     """The a > 0 where f(a) = target, f increasing and about a power law (f ~ a^power near guess):
     secant steps in ln f(ln a), each overshooting by 10%, until the root is bracketed, then brentq.
     Few evaluations, and none far above the root (thin films, a >> t, are the costly ones)."""
+    from scipy.optimize import brentq
     x0, g0 = math.log(guess), math.log(f(guess) / target)
     slope = power
     for _ in range(100):
@@ -449,6 +452,7 @@ def gao_effective_modulus(c: Coating, a: float) -> float:
 @functools.lru_cache(maxsize=64)
 def deviation_integral(c: Coating) -> float:
     """int_0^inf D(u) du by adaptive quadrature (scipy quad, independent of the panel rule)."""
+    from scipy.integrate import quad
     floor = 1e-3 * (1.0 if c.rigid_base else min(1.0, c.G2 / c.G1))
     pieces = [(0, floor), (floor, 1e-1), (1e-1, 2), (2, 40)]
     return sum(quad(lambda u: float(surface_deviation(u, c)), lo, hi, epsabs=1e-15, epsrel=1e-13, limit=200)[0]
