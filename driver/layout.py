@@ -15,8 +15,6 @@ PACKAGE_DIR = Path(__file__).resolve().parent
 _CHECKOUT_EDP = PACKAGE_DIR.parent / "edp"
 EDP_DIR = _CHECKOUT_EDP if (_CHECKOUT_EDP / "hertz.edp").is_file() else PACKAGE_DIR / "edp"
 ENTRY = "hertz.edp"
-# the tests' references (a checkout only): the charts draw their curves where they are
-TESTS_DIR = PACKAGE_DIR.parent / "tests"
 
 DEFAULT_RESULTS = "results"  # resolved against the working directory when a command starts
 
