@@ -102,11 +102,16 @@ def studies(quick_results) -> dict[str, pd.DataFrame]:
     return {name: studytable.read(quick_results / f"{name}.csv") for name in STUDIES}
 
 
+def checkout_first(env: dict[str, str]) -> dict[str, str]:
+    """env with this checkout first on PYTHONPATH: a child process imports this checkout's
+    driver, whatever else is installed."""
+    return env | {"PYTHONPATH": os.pathsep.join([str(REPO), *filter(None, [env.get("PYTHONPATH")])])}
+
+
 def cli(*args: str, cwd: Path | str = REPO, env: dict[str, str] | None = None,
         **kw) -> subprocess.CompletedProcess:
     """`python -m driver ARGS` as a user runs it, in cwd (this checkout's driver, whatever is installed)."""
-    env = dict(os.environ if env is None else env)
-    env["PYTHONPATH"] = os.pathsep.join([str(REPO), *filter(None, [env.get("PYTHONPATH")])])
+    env = checkout_first(dict(os.environ if env is None else env))
     return subprocess.run([sys.executable, "-m", "driver", *args], cwd=cwd, capture_output=True, text=True,
                           env=env, **kw)
 
@@ -122,6 +127,22 @@ def hertz(*args: str, cwd: Path | str = REPO) -> subprocess.CompletedProcess:
         except SystemExit as exc:  # argparse's usage errors
             code = exc.code if isinstance(exc.code, int) else 2
     return subprocess.CompletedProcess(["hertz", *args], code, out.getvalue(), err.getvalue())
+
+
+def rel(x, ref):
+    """|x/ref - 1|: the relative error of x against ref."""
+    return abs(x / ref - 1)
+
+
+# the relative errors a run writes against its own closed form (Hertz, Sneddon)
+ERROR_COLUMNS = ("err_p0", "err_F", "err_a")
+
+
+def max_err(rows):
+    """The largest |error| of p0, F and a: of one summary (a number), or of each row of a table (a Series)."""
+    if isinstance(rows, pd.DataFrame):
+        return rows[list(ERROR_COLUMNS)].abs().max(axis=1)
+    return max(abs(rows[column]) for column in ERROR_COLUMNS)
 
 
 # what -out holds after a 2D run, every file whole (no *.part)

@@ -24,6 +24,7 @@ from driver.studies import STUDIES
 from driver.sweeps import Job, run_studies
 
 from conftest import REPO as ROOT
+from conftest import checkout_first, cli
 
 distributed = pytest.importorskip("distributed", reason="Dask is in the test extra (pip install -e '.[test]')")
 
@@ -36,12 +37,10 @@ def _machine(column: str) -> bool:
     return column in MACHINE_COLUMNS or column.startswith("t_") or column.endswith("_mb")
 
 
-def _env(tmp: Path) -> dict[str, str]:
-    env = {k: v for k, v in os.environ.items() if k != "DASK_SCHEDULER_ADDRESS"}
-    # the workers import this checkout's driver, whatever else is installed
-    env["PYTHONPATH"] = os.pathsep.join([str(ROOT), *filter(None, [env.get("PYTHONPATH")])])
-    env["DASK_TEMPORARY_DIRECTORY"] = str(tmp)
-    return env
+def worker_env(tmp: Path) -> dict[str, str]:
+    """A scheduler's and its workers' environment: this checkout's driver, no scheduler of the caller's."""
+    env = checkout_first({k: v for k, v in os.environ.items() if k != "DASK_SCHEDULER_ADDRESS"})
+    return env | {"DASK_TEMPORARY_DIRECTORY": str(tmp)}
 
 
 def _stop(proc: subprocess.Popen) -> None:
@@ -61,7 +60,7 @@ def _stop(proc: subprocess.Popen) -> None:
 class Cluster:
     def __init__(self, tmp: Path):
         self.tmp = tmp
-        self.env = _env(tmp)
+        self.env = worker_env(tmp)
         self.procs: list[subprocess.Popen] = []
         self.address = ""
 
@@ -135,11 +134,6 @@ def test_a_study_through_the_scheduler_gives_the_local_pools_rows(cluster, tmp_p
     for case_id in local:
         files = sorted(p.name for p in (tmp_path / "dask" / "runs" / "figures" / case_id).iterdir())
         assert files == sorted(p.name for p in (tmp_path / "local" / "runs" / "figures" / case_id).iterdir())
-
-
-def cli(*args: str, env: dict[str, str], **kw):
-    return subprocess.run([sys.executable, "-m", "driver", *args], cwd=ROOT, capture_output=True, text=True,
-                          env=env, **kw)
 
 
 def _solvers(under: Path) -> list[str]:
@@ -234,7 +228,7 @@ def test_local_n_from_the_environment_starts_its_own_workers(tmp_path):
     spec = tmp_path / "s.toml"
     spec.write_text('name = "tiny"\n[base]\nn = 8\n[grid]\nkpen = [1e5, 1e7]\n')
     proc = cli("sweep", "--spec", str(spec), "--results", str(tmp_path), "--no-progress",
-               env=_env(tmp_path) | {"DASK_SCHEDULER_ADDRESS": "local:2"})
+               env=worker_env(tmp_path) | {"DASK_SCHEDULER_ADDRESS": "local:2"})
     assert proc.returncode == 0, proc.stderr
     rows = studytable.read(tmp_path / "tiny.csv")
     assert len(rows) == 2 and (rows["status"] == "converged").all() and (rows["jobs"] == 2).all()
@@ -243,7 +237,7 @@ def test_local_n_from_the_environment_starts_its_own_workers(tmp_path):
 
 @pytest.mark.parametrize("address", ["local:0", "local:x"])
 def test_a_bad_local_cluster_size_is_refused(address):
-    proc = cli("sweep", "kpen", "--scheduler", address, env=_env(Path("/nonexistent")))
+    proc = cli("sweep", "kpen", "--scheduler", address, env=worker_env(Path("/nonexistent")))
     assert proc.returncode == 2 and "local:N" in proc.stderr
 
 
@@ -265,7 +259,7 @@ def test_a_local_cluster_whose_scheduler_leaves_first_prints_no_traceback(tmp_pa
         "    except OSError:\n"
         "        logging.getLogger('distributed.core').exception('Exception while handling op heartbeat_worker')\n"
         "    os._exit(0)\n")
-    proc = subprocess.Popen([sys.executable, "-c", script], env=_env(tmp_path), cwd=tmp_path, text=True,
+    proc = subprocess.Popen([sys.executable, "-c", script], env=worker_env(tmp_path), cwd=tmp_path, text=True,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
     try:
         _, stderr = proc.communicate(timeout=120)

@@ -24,13 +24,14 @@ def venv(tmp_path_factory):
     return env_dir
 
 
-def _env() -> dict[str, str]:
+def outside_env() -> dict[str, str]:
+    """An environment that points at no checkout or virtual environment: the installed package alone."""
     return {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
 
 
 def test_the_installed_command_runs_a_case_from_another_folder(venv, tmp_path):
     proc = subprocess.run([str(venv / "bin" / "hertz"), "run", "--n", "8", "--json"], cwd=tmp_path,
-                          capture_output=True, text=True, env=_env(), timeout=300)
+                          capture_output=True, text=True, env=outside_env(), timeout=300)
     assert proc.returncode == 0, proc.stderr
     assert json.loads(proc.stdout)["status"] == "converged"
     assert (tmp_path / "results" / "runs" / "single" / "n=8" / "summary.csv").is_file()
@@ -46,7 +47,7 @@ print(driver.__file__, driver.layout.EDP_DIR, driver.__version__, result.status,
 
 def test_solve_uses_the_solver_scripts_shipped_in_the_package(venv, tmp_path):
     proc = subprocess.run([str(venv / "bin" / "python"), "-c", SOLVE], cwd=tmp_path, capture_output=True,
-                          text=True, env=_env(), timeout=300)
+                          text=True, env=outside_env(), timeout=300)
     assert proc.returncode == 0, proc.stderr
     package, edp, version, status, files = proc.stdout.split("\n")[:5]
     assert package.startswith(str(venv)) and edp == str(venv / "lib" / f"python{sys.version_info.major}."

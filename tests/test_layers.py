@@ -11,14 +11,11 @@ from promise import check_promise
 
 from driver.references import layered as L
 
+from conftest import rel
 from hertz_reference import ellipsoid_from_depth, sphere
 
 E, NU, R, D = 10.0, 0.3, 0.5, 0.02
 HZ = sphere(E, NU, R, D)  # a = 0.1: t = 0.1 is t = a
-
-
-def rel(x, ref):
-    return abs(x / ref - 1)
 
 
 def reference(t, E2, nu=NU, nu2=NU, d=D):
@@ -28,7 +25,7 @@ def reference(t, E2, nu=NU, nu2=NU, d=D):
     return ref, float(np.max(p))
 
 
-def true_error(s, t, E2, nu=NU, nu2=NU):
+def error_against_layered(s, t, E2, nu=NU, nu2=NU):
     """Largest relative error of p0, F and a against the layered reference."""
     ref, p0 = reference(t, E2, nu, nu2)
     return max(rel(s["F_fe"], ref.F), rel(s["a_fe"], ref.a), rel(s["p0_fe"], p0))
@@ -102,7 +99,7 @@ def test_a_moderate_penalty_on_a_stiff_film_says_it_is_off_or_keeps_the_promise(
     # penalty part measured, the third still did: an error of 2.0% read 0.82% (in magnitude 4.1%)
     t, E2 = t_over_a * HZ.a, E2_over_E * E
     run = solve("-t", repr(t), "-E2", repr(E2), "-gamma", gamma)
-    truth, estimate = check_promise(run, true_error(run.summary, t, E2))
+    truth, estimate = check_promise(run, error_against_layered(run.summary, t, E2))
     assert estimate >= 0.5 * truth, (truth, estimate)  # exit 5 too
 
 
@@ -117,7 +114,7 @@ def test_a_coated_body_s_penalty_part_is_the_penalty_s_effect(solve):
     effect = pen.summary["p0_fe"] / exact.summary["p0_fe"] - 1
     part = float(re.search(r"penalty, domain: \S+ (\S+) \S+ on p0", pen.output).group(1))
     assert effect < -0.01 and part == pytest.approx(effect, rel=0.3), (part, effect)
-    check_promise(pen, true_error(pen.summary, 0.02, 0.5))
+    check_promise(pen, error_against_layered(pen.summary, 0.02, 0.5))
 
 
 # Former misses, each a run that exited 0 with an error more than twice its estimate:
@@ -142,7 +139,7 @@ def test_a_stiff_penalty_s_noisy_edge_is_not_read_as_the_edge_law_s_misfit(solve
     # fit read that noise: a thin film's a estimate was 1.24% (exit 5) where a was -0.098%; the
     # misfit is taken from the exact partner level (measured 0.14%, 1.5 times the truth)
     run = solve("-t", "0.00625", "-E2", "30", "-nu", "0.25", "-nu2", "0.25", "-n", "16", "-gamma", "1e4")
-    truth = true_error(run.summary, 0.00625, 30.0, 0.25, 0.25)
+    truth = error_against_layered(run.summary, 0.00625, 30.0, 0.25, 0.25)
     assert run.exit_code == 0 and 0.5 * truth <= run.summary["accuracy_predicted"] <= 4 * truth, run.output
 
 
@@ -151,7 +148,7 @@ def test_the_former_coated_misses_keep_the_promise(solve, args):
     o = dict(zip(args[::2], args[1::2]))
     nu = float(o.get("-nu", NU))
     run = solve(*args)
-    truth, estimate = check_promise(run, true_error(run.summary, float(o["-t"]), float(o["-E2"]), nu,
+    truth, estimate = check_promise(run, error_against_layered(run.summary, float(o["-t"]), float(o["-E2"]), nu,
                                                     float(o.get("-nu2", nu))))
     assert estimate >= 0.5 * truth, (truth, estimate)  # exit 5 too
 
@@ -166,7 +163,7 @@ def test_a_soft_base_in_the_mixed_form_keeps_the_promise(solve, nu):
     s = run.summary
     ref, _ = reference(t, E2, float(nu), float(nu))
     assert s["formulation"] == "mixed" and rel(s["F_fe"], ref.F) < 2e-3, (s["F_fe"], ref.F)
-    check_promise(run, true_error(s, t, E2, float(nu), float(nu)))
+    check_promise(run, error_against_layered(s, t, E2, float(nu), float(nu)))
 
 
 def test_two_poisson_s_ratios_in_the_mixed_form_converge_at_second_order(solve):
@@ -187,7 +184,7 @@ def test_a_nearly_incompressible_thin_film_on_a_stiffer_base_keeps_the_promise(s
     # and +0.05%
     args = ("-t", "0.015", "-E2", "30", "-nu", "0.49", "-nu2", "0.3")
     run = solve(*args, "-method", method)
-    truth, _ = check_promise(run, true_error(run.summary, 0.015, 30.0, 0.49, 0.3))
+    truth, _ = check_promise(run, error_against_layered(run.summary, 0.015, 30.0, 0.49, 0.3))
     assert run.exit_code == 0 and truth < 3e-3, (truth, run.output)
 
 
@@ -349,7 +346,7 @@ def test_a_clamped_stiff_film_on_a_soft_base_says_it_is_off_or_keeps_the_promise
     # a clamped far boundary holds back the sinking a stiff film spreads over its plate length:
     # t = 1, E2 = E/100 exited 0 with F +2.9% estimated at 0.14%, its domain part read as a/L alone
     run = solve("-t", t, "-E2", "0.1", "-farfield", "clamped")
-    truth, estimate = check_promise(run, true_error(run.summary, float(t), 0.1))
+    truth, estimate = check_promise(run, error_against_layered(run.summary, float(t), 0.1))
     assert estimate >= 0.5 * truth, (truth, estimate)  # exit 5 too
 
 
@@ -425,9 +422,9 @@ def test_forced_p2_displacements_near_incompressibility_say_they_lock(solve):
     args = ("-t", "0.05", "-E2", "0.01", "-nu", "0.49", "-nu2", "0.49", "-method", "lagrange")
     forced = solve(*args, "-formulation", "displacement")
     assert forced.exit_code == 5 and "p2-locking" in forced.summary["warnings"], forced.output
-    assert true_error(forced.summary, 0.05, 0.01, 0.49, 0.49) > 0.01  # the error it names
+    assert error_against_layered(forced.summary, 0.05, 0.01, 0.49, 0.49) > 0.01  # the error it names
     auto = solve(*args)
-    check_promise(auto, true_error(auto.summary, 0.05, 0.01, 0.49, 0.49))
+    check_promise(auto, error_against_layered(auto.summary, 0.05, 0.01, 0.49, 0.49))
     assert "p2-locking" not in str(auto.summary["warnings"])
 
 
@@ -436,5 +433,5 @@ def test_an_incompressible_film_on_an_incompressible_base_a_thousand_times_softe
     # soft base's block far below its own scale, and the run diverged at its first solve
     args = ("-t", "0.05", "-E2", "0.01", "-nu", "0.5", "-nu2", "0.5", "-method", "lagrange")
     run = solve(*args)
-    truth, _ = check_promise(run, true_error(run.summary, 0.05, 0.01, 0.5, 0.5))
+    truth, _ = check_promise(run, error_against_layered(run.summary, 0.05, 0.01, 0.5, 0.5))
     assert run.exit_code == 0 and truth < 3e-3, (truth, run.output)  # measured 0.08%

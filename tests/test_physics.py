@@ -4,6 +4,7 @@ import math
 import numpy as np
 import pytest
 
+from conftest import max_err
 from hertz_reference import (
     SEED,
     cylinder_half_width,
@@ -16,10 +17,6 @@ from hertz_reference import (
 
 HZ = sphere(**SEED)
 ESTAR = estar(SEED["E"], SEED["nu"])
-
-
-def max_err(s):
-    return max(abs(s["err_p0"]), abs(s["err_F"]), abs(s["err_a"]))
 
 
 def test_default_case_is_within_a_tenth_of_a_percent_of_hertz(solve):

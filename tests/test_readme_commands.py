@@ -88,7 +88,8 @@ def clone(tmp_path_factory) -> dict[str, Path]:
     return {"root": root, "edp": root / "edp", "elsewhere": elsewhere}
 
 
-def _env(clone: dict[str, Path]) -> dict[str, str]:
+def clone_env(clone: dict[str, Path]) -> dict[str, str]:
+    """The environment a README command runs in: the clone's driver, no display, no scheduler."""
     env = dict(os.environ, MPLBACKEND="Agg")
     env["PYTHONPATH"] = str(clone["root"])  # `hertz` and python -m driver: the copy's driver
     env.pop("DASK_SCHEDULER_ADDRESS", None)
@@ -102,10 +103,10 @@ def _results_current(root: Path) -> bool:
 
 
 def test_the_copy_runs_its_own_driver(clone):
-    proc = subprocess.run(["hertz", "--version"], cwd=clone["elsewhere"], env=_env(clone), capture_output=True,
+    proc = subprocess.run(["hertz", "--version"], cwd=clone["elsewhere"], env=clone_env(clone), capture_output=True,
                           text=True)
     where = subprocess.run(["python3", "-c", "import driver; print(driver.__file__)"], cwd=clone["elsewhere"],
-                           env=_env(clone), capture_output=True, text=True)
+                           env=clone_env(clone), capture_output=True, text=True)
     assert proc.returncode == 0 and where.stdout.startswith(str(clone["root"])), where.stdout + where.stderr
 
 
@@ -118,7 +119,7 @@ def test_a_documented_command_works_as_typed(clone, where, command):
         pytest.skip(STALE)
     typed = command
     start = time.perf_counter()
-    proc = subprocess.run(["bash", "-c", typed], cwd=clone[where], env=_env(clone), capture_output=True,
+    proc = subprocess.run(["bash", "-c", typed], cwd=clone[where], env=clone_env(clone), capture_output=True,
                           text=True, timeout=900)
     seconds = time.perf_counter() - start
     assert proc.returncode == 0, f"{typed} in {where} ({seconds:.1f} s):\n{proc.stdout[-3000:]}\n{proc.stderr[-3000:]}"

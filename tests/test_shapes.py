@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 from promise import check_promise
 from scipy.optimize import minimize_scalar
 
+from conftest import rel
 from hertz_reference import (
     estar,
     flat_punch_edge_coefficient,
@@ -25,10 +26,6 @@ from hertz_reference import (
 E, NU, R = 10.0, 0.3, 0.5
 ESTAR = estar(E, NU)
 GEOMETRY = {"sphere": dict(R=R), "cone": dict(angle=70.3), "power": dict(R=R, k=1.5)}
-
-
-def rel(x, ref):
-    return abs(x / ref - 1)
 
 
 def center_or_max_pressure(shape: str, a: float, modulus: float = ESTAR, **geometry) -> float:

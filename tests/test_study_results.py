@@ -2,6 +2,8 @@
 import numpy as np
 import pytest
 
+from conftest import max_err
+
 
 def slope(x, y):
     """Least-squares slope of log|y| against log x."""
@@ -11,10 +13,6 @@ def slope(x, y):
 def rows(frame, variant=None, status=("converged", "inaccurate")):
     df = frame[frame["status"].isin(status)]
     return df if variant is None else df[df["variant"] == variant]
-
-
-def max_err(df):
-    return df[["err_p0", "err_F", "err_a"]].abs().max(axis=1)
 
 
 def test_penalty_error_falls_as_one_over_kpen_to_the_discretization_floor(studies):
