@@ -79,3 +79,94 @@ def test_every_mutation_finds_the_code_it_breaks():
     from mutations import MUTATIONS
     stale = [m.name for m in MUTATIONS if (ROOT / m.path).read_text().count(m.old) != 1]
     assert not stale, stale
+
+
+# -- every path the docs and the comments cite exists -----------------------------------------
+
+# a path from the repository's root: edp/lib/fe/section.idp, driver/charts/, results/REPORT.md
+ROOTED = re.compile(r"(?<![\w./-])((?:edp|driver|tests|docs|results|bench)(?:/[\w.+-]+)+/?)")
+# what an .idp file's comment or include names: lib/ from edp/, steps/, fe/, methods/ from edp/lib/
+IN_EDP = re.compile(r"(?<![\w./-])((lib|steps|fe|methods)/[\w.+-]+\.idp)\b")
+# a file named alone (messages.idp, hertz_reference.py): some file of the repository has that name
+BARE = re.compile(r"(?<![\w./-])([\w+-]+\.(?:idp|edp|py|md|cpp))\b")
+# outputs a run or a sweep writes, never committed: cited as places, not as files
+UNTRACKED = ("results/local", "results/runs")
+# names the docs give that are not this repository's paths, each with why
+NOT_PATHS_HERE = {
+    "driver/edp/": "the installed wheel's copy of edp/ (setup.py), not a folder of the checkout",
+    "slurm_sweep.py": "the file a reader saves docs/driver.md's cluster example as",
+}
+
+
+def _comments(path):
+    """(line number, text) of what a file says in prose: the whole of a Markdown file, the
+    comments of a FreeFEM, C++ or shell file, the comments and docstrings of a Python file."""
+    text = path.read_text(errors="replace")
+    if path.suffix == ".md":
+        yield from enumerate(text.splitlines(), 1)
+    elif path.suffix == ".py":
+        import ast
+        import io
+        import tokenize
+        for token in tokenize.generate_tokens(io.StringIO(text).readline):
+            if token.type == tokenize.COMMENT:
+                yield token.start[0], token.string
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, (ast.Module, ast.ClassDef, ast.FunctionDef, ast.AsyncFunctionDef)):
+                body = node.body
+                if body and isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant) \
+                        and isinstance(body[0].value.value, str):
+                    for k, line in enumerate(body[0].value.value.splitlines()):
+                        yield body[0].lineno + k, line
+    elif path.suffix == ".sh":
+        for number, line in enumerate(text.splitlines(), 1):
+            if "#" in line:
+                yield number, line[line.index("#"):]
+    else:  # FreeFEM and C++: // to the end of the line, and /* ... */
+        for match in re.finditer(r"//[^\n]*|/\*.*?\*/", text, re.S):
+            first = text.count("\n", 0, match.start()) + 1
+            for k, line in enumerate(match.group(0).splitlines()):
+                yield first + k, line
+
+
+def _cited_files():
+    yield ROOT / "README.md"
+    yield from sorted((ROOT / "docs").glob("*.md"))
+    for folder in ("edp", "driver"):
+        for path in sorted((ROOT / folder).rglob("*")):
+            if path.suffix in (".idp", ".edp", ".cpp", ".py", ".sh") and path.is_file():
+                yield path
+
+
+def _missing(text, names):
+    """The paths a line cites that are not in the repository."""
+    for match in ROOTED.finditer(text):
+        cited = match.group(1).rstrip(".")
+        bare_word = "." not in cited.rsplit("/", 1)[-1] and not cited.endswith("/")
+        if cited in NOT_PATHS_HERE or cited.startswith(UNTRACKED) or bare_word:
+            continue  # an output, or a name that is neither a file nor a folder/ (driver/edp: the wheel's)
+        if not (ROOT / cited).exists():
+            yield cited
+    for match in IN_EDP.finditer(text):
+        base = EDP_DIR if match.group(2) == "lib" else EDP_DIR / "lib"
+        if not (base / match.group(1)).is_file():
+            yield match.group(1)
+    for match in BARE.finditer(text):
+        if match.group(1) not in names and match.group(1) not in NOT_PATHS_HERE:
+            yield match.group(1)
+
+
+def test_every_path_the_docs_and_comments_cite_exists():
+    names = {p.name for p in ROOT.rglob("*") if ".git" not in p.parts}
+    missing = [f"{path.relative_to(ROOT)}:{number}: {cited}"
+               for path in _cited_files() for number, text in _comments(path)
+               for cited in _missing(text, names)]
+    assert not missing, "\n".join(missing)
+
+
+def test_the_citation_check_finds_each_kind_of_path():
+    names = {"options.idp", "conftest.py"}
+    text = ("edp/lib/options.idp, edp/lib/gone.idp, docs/gone.md, driver/charts/, driver/gone/, lib/options.idp, "
+            "steps/gone.idp, fe/section.idp, options.idp, conftest.py, gone.py, results/local/bench.csv, driver/edp/")
+    assert list(_missing(text, names)) == ["edp/lib/gone.idp", "docs/gone.md", "driver/gone/", "steps/gone.idp",
+                                           "gone.py"]
