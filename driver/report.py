@@ -19,7 +19,7 @@ import pandas as pd
 
 from driver import charts, freefem, layout, studytable
 from driver.charts import Chart
-from driver.charts.common import sphere_cases
+from driver.charts.common import draw, sphere_cases
 from driver.errors import ReportError, TableError
 from driver.studies import STUDIES, report_charts
 
@@ -104,8 +104,10 @@ def environment(results_dir: Path) -> list[str]:
     return lines
 
 
-# each chart of the report, in its order: its name (the PNG's stem), how to draw it, its caption
+# each chart of the report, in its order, under its name (the PNG's stem)
 CHARTS: dict[str, Chart] = {name: charts.CHARTS[name] for name in report_charts()}
+# the study whose table each chart draws (a summary chart reads every table)
+OWNERS = {name: study.name for study in STUDIES.values() for name in study.charts}
 
 
 def write_report(results_dir: Path, say: Callable[[str], None] = print) -> Path:
@@ -118,7 +120,7 @@ def write_report(results_dir: Path, say: Callable[[str], None] = print) -> Path:
     for name, chart in CHARTS.items():
         png = results_dir / f"{name}.png"
         try:
-            drawn[name] = chart.draw(tables, results_dir, png)
+            drawn[name] = draw(chart, OWNERS.get(name), tables, results_dir, png)
         except charts.NoData as why:
             say(f"skipped {png.name}: {why}")
         except KeyError as column:

@@ -8,7 +8,7 @@ import pytest
 from matplotlib.colors import to_rgb
 
 from driver.charts import CHARTS, common, effectivity, stability
-from driver.studies import report_charts
+from driver.studies import STUDIES, report_charts
 
 # Machado, Oliveira and Fernandes (2009), full severity, on linear RGB
 VISION = {
@@ -89,3 +89,6 @@ def test_every_chart_a_study_names_is_drawn_by_one_module_and_every_drawn_chart_
     assert len(named) == len(set(named)), named
     assert set(named) == set(CHARTS), set(named) ^ set(CHARTS)
     assert all(chart.caption.strip() for chart in CHARTS.values())
+    for study in STUDIES.values():  # a chart reads only the files its study keeps
+        for name in study.charts:
+            assert set(CHARTS[name].kept) <= set(study.keep), (study.name, name)

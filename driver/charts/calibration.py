@@ -8,8 +8,14 @@ import matplotlib.ticker
 import numpy as np
 import pandas as pd
 
-from driver.charts.common import BAND, EFFECTIVITY_BAND, STATUS_COLORS, Chart, Tables, need, save, scene, study
+from driver.charts.common import BAND, EFFECTIVITY_BAND, STATUS_COLORS, Chart, need, save, scene
 from driver.schema import max_error
+
+CAPTION = ("Left and middle: the run's own error estimate (no Hertz) against the true max error "
+           "of p0, F and a on scenes with closed forms (nu from -0.5 to 0.499, d/R from 1e-6 to 0.1, "
+           "SI units, plane strain, P1, lagrange, and -accuracy runs); the band is estimate/truth "
+           f"from {BAND}. Right: -accuracy X, the true error reached (dots) and the estimate "
+           "(crosses) against X; points on or below the line meet the target.")
 
 
 def calibration(frame: pd.DataFrame, path: Path) -> Path:
@@ -55,18 +61,4 @@ def calibration(frame: pd.DataFrame, path: Path) -> Path:
     return save(fig, path)
 
 
-CAPTION = ("Left and middle: the run's own error estimate (no Hertz) against the true max error "
-           "of p0, F and a on scenes with closed forms (nu from -0.5 to 0.499, d/R from 1e-6 to 0.1, "
-           "SI units, plane strain, P1, lagrange, and -accuracy runs); the band is estimate/truth "
-           f"from {BAND}. Right: -accuracy X, the true error reached (dots) and the estimate "
-           "(crosses) against X; points on or below the line meet the target.")
-
-
-def draw_calibration(tables: Tables, results: Path, png: Path) -> Path:
-    return calibration(study(tables, "calibration"), png)
-
-
-# this module's charts by name (the PNG's stem), each with its caption in REPORT.md
-CHARTS = {
-    "calibration": Chart(draw_calibration, CAPTION),
-}
+CHARTS = {"calibration": Chart(calibration, CAPTION)}

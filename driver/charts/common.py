@@ -45,10 +45,14 @@ BAND = "{:g} to {:g}".format(*EFFECTIVITY_BAND)  # as the captions name it
 
 
 class Chart(NamedTuple):
-    """A chart of the report: how to draw it from the study tables and the results folder's
-    kept files into a PNG, and its caption in REPORT.md."""
-    draw: Callable[[Tables, Path, Path], Path]
-    caption: str
+    """A chart of the report, under its name (the PNG's stem) in a module's CHARTS.
+
+    draw(table, *kept frames, png) for a chart of one study: that study's table, then the
+    files of its cases the sweep kept (kept, names of Study.keep), in that order;
+    draw(tables, png) for a summary chart, which reads every study's tables."""
+    draw: Callable[..., Path]
+    caption: str  # in REPORT.md, under the chart
+    kept: tuple[str, ...] = ()
 
 
 class NoData(Exception):
@@ -106,6 +110,13 @@ def scene(frame: pd.DataFrame) -> str:
         if len(values) == 1:
             parts.append(fmt.format(values[0]))
     return ", ".join(parts)
+
+
+def draw(chart: Chart, owner: str | None, tables: Tables, results_dir: Path, png: Path) -> Path:
+    """Draw a chart into png: of its owner study's table and kept files, or, owner None, of every table."""
+    if owner is None:
+        return chart.draw(tables, png)
+    return chart.draw(study(tables, owner), *(kept(results_dir, owner, name) for name in chart.kept), png)
 
 
 def study(tables: Tables, name: str) -> pd.DataFrame:

@@ -7,7 +7,12 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
-from driver.charts.common import QUANTITY_COLORS, Chart, Tables, need, save, scene, study
+from driver.charts.common import QUANTITY_COLORS, Chart, need, save, scene
+
+CAPTION = ("Force and peak-pressure bias of a finite domain against its radius L/a (exact contact, so no "
+           "penalty error): a clamped far boundary follows 0.94% x 100a/L; Boussinesq's boundary (the rest "
+           "of the half-space moving as a point load of the contact force, the default) stays at the "
+           "discretization floor from L = 10 a.")
 
 
 def domain_bias(frame: pd.DataFrame, path: Path) -> Path:
@@ -32,17 +37,4 @@ def domain_bias(frame: pd.DataFrame, path: Path) -> Path:
     return save(fig, path)
 
 
-CAPTION = ("Force and peak-pressure bias of a finite domain against its radius L/a (exact contact, so no "
-           "penalty error): a clamped far boundary follows 0.94% x 100a/L; Boussinesq's boundary (the rest "
-           "of the half-space moving as a point load of the contact force, the default) stays at the "
-           "discretization floor from L = 10 a.")
-
-
-def draw_domain(tables: Tables, results: Path, png: Path) -> Path:
-    return domain_bias(study(tables, "domain"), png)
-
-
-# this module's charts by name (the PNG's stem), each with its caption in REPORT.md
-CHARTS = {
-    "domain": Chart(draw_domain, CAPTION),
-}
+CHARTS = {"domain": Chart(domain_bias, CAPTION)}

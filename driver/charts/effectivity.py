@@ -10,10 +10,16 @@ import matplotlib.ticker
 import numpy as np
 import pandas as pd
 
-from driver.charts.common import BAND, EFFECTIVITY_BAND, Chart, Tables, need, save
+from driver.charts.common import BAND, EFFECTIVITY_BAND, Chart, need, save
 from driver.schema import ANSWERED
 
 MODEL_TITLES = {"axi": "axisymmetric", "plane": "plane strain", "3d": "3D"}
+
+CAPTION = ("The run's own error estimate (no reference used) over the true max error of the quantities "
+           "that have both an estimate and a reference (p0, F and a; b in 3D; a punch's K), for every "
+           "distinct answered result of every study (a study's copy of another's scene, with the same "
+           f"relative errors, counts once), a panel per model: the grey band is {BAND}. A point below "
+           "it would be an estimate that promised too much; above it the estimate is safe but pessimistic.")
 
 
 def effectivity_rows(tables: dict[str, pd.DataFrame]) -> pd.DataFrame:
@@ -82,18 +88,4 @@ def effectivity(tables: dict[str, pd.DataFrame], path: Path) -> Path:
     return save(fig, path, layout=False)
 
 
-CAPTION = ("The run's own error estimate (no reference used) over the true max error of the quantities "
-           "that have both an estimate and a reference (p0, F and a; b in 3D; a punch's K), for every "
-           "distinct answered result of every study (a study's copy of another's scene, with the same "
-           f"relative errors, counts once), a panel per model: the grey band is {BAND}. A point below "
-           "it would be an estimate that promised too much; above it the estimate is safe but pessimistic.")
-
-
-def draw_effectivity(tables: Tables, results: Path, png: Path) -> Path:
-    return effectivity(tables, png)
-
-
-# this module's charts by name (the PNG's stem), each with its caption in REPORT.md
-CHARTS = {
-    "effectivity": Chart(draw_effectivity, CAPTION),
-}
+CHARTS = {"effectivity": Chart(effectivity, CAPTION)}

@@ -7,7 +7,12 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from driver.charts.common import QUANTITY_COLORS, Chart, Tables, kept, need, save, study
+from driver.charts.common import QUANTITY_COLORS, Chart, need, save
+
+PRESSURE_PROFILES_CAPTION = ("Surface pressure for soft to stiff penalties. Dotted: the pointwise penalty "
+                             "pressure kpen<u_z - h>+, against the indenter the contact forms see (P1: its "
+                             "interpolant between the nodes); solid: the recovered pressure that is reported "
+                             "(P1: nodal contact force / nodal area; P2: L2 projection of the nodal forces).")
 
 
 def pressure_profiles(figures: pd.DataFrame, profiles: pd.DataFrame, path: Path) -> Path:
@@ -83,36 +88,14 @@ def axis_stresses(figures: pd.DataFrame, axis: pd.DataFrame, path: Path) -> Path
     ax.legend(fontsize=8, loc="lower left")
     return save(fig, path)
 
-
-PRESSURE_PROFILES_CAPTION = ("Surface pressure for soft to stiff penalties. Dotted: the pointwise penalty "
-                             "pressure kpen<u_z - h>+, against the indenter the contact forms see (P1: its "
-                             "interpolant between the nodes); solid: the recovered pressure that is reported "
-                             "(P1: nodal contact force / nodal area; P2: L2 projection of the nodal forces).")
-
 SEED_FIGURE1_CAPTION = ("The seed's Figure 1 redone: surface displacement, gap h - u_z and the indenter for "
                         "soft to stiff penalties; a soft penalty lets the indenter sink into the body.")
 
 AXIS_STRESSES_CAPTION = "sigma_z, sigma_r and tau_max = |sigma_r - sigma_z|/2 along the axis against Hertz."
 
 
-def draw_pressure_profiles(tables: Tables, results: Path, png: Path) -> Path:
-    return pressure_profiles(study(tables, "figures"),
-                             kept(results, "figures", "profile.csv"), png)
-
-
-def draw_seed_figure1(tables: Tables, results: Path, png: Path) -> Path:
-    return seed_figure(study(tables, "figures"),
-                       kept(results, "figures", "profile.csv"), png)
-
-
-def draw_axis_stresses(tables: Tables, results: Path, png: Path) -> Path:
-    return axis_stresses(study(tables, "figures"),
-                         kept(results, "figures", "axis.csv"), png)
-
-
-# this module's charts by name (the PNG's stem), each with its caption in REPORT.md
 CHARTS = {
-    "pressure_profiles": Chart(draw_pressure_profiles, PRESSURE_PROFILES_CAPTION),
-    "seed_figure1": Chart(draw_seed_figure1, SEED_FIGURE1_CAPTION),
-    "axis_stresses": Chart(draw_axis_stresses, AXIS_STRESSES_CAPTION),
+    "pressure_profiles": Chart(pressure_profiles, PRESSURE_PROFILES_CAPTION, kept=("profile.csv",)),
+    "seed_figure1": Chart(seed_figure, SEED_FIGURE1_CAPTION, kept=("profile.csv",)),
+    "axis_stresses": Chart(axis_stresses, AXIS_STRESSES_CAPTION, kept=("axis.csv",)),
 }

@@ -6,8 +6,12 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from driver.charts.common import METHOD_STYLE, Chart, Tables, need, save, scene, study
+from driver.charts.common import METHOD_STYLE, Chart, need, save, scene
 from driver.schema import max_error
+
+CAPTION = ("Left: max error and penetration / d against the absolute penalty (seed scene). The "
+           "penalty error falls as 1/kpen down to the discretization floor; lagrange and Uzawa have "
+           "no penalty error. Right: iterations over all levels.")
 
 
 def penalty_study(frame: pd.DataFrame, path: Path) -> Path:
@@ -38,16 +42,4 @@ def penalty_study(frame: pd.DataFrame, path: Path) -> Path:
     return save(fig, path)
 
 
-CAPTION = ("Left: max error and penetration / d against the absolute penalty (seed scene). The "
-           "penalty error falls as 1/kpen down to the discretization floor; lagrange and Uzawa have "
-           "no penalty error. Right: iterations over all levels.")
-
-
-def draw_penalty(tables: Tables, results: Path, png: Path) -> Path:
-    return penalty_study(study(tables, "kpen"), png)
-
-
-# this module's charts by name (the PNG's stem), each with its caption in REPORT.md
-CHARTS = {
-    "penalty": Chart(draw_penalty, CAPTION),
-}
+CHARTS = {"penalty": Chart(penalty_study, CAPTION)}

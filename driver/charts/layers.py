@@ -8,8 +8,15 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
-from driver.charts.common import Chart, Tables, kept, need, save, study
+from driver.charts.common import Chart, need, save
 from driver.references import layered
+
+CAPTION = ("A film (E, nu) bonded to a substrate (E2, nu2) or a rigid base, sphere at d = 0.02, exact "
+           "contact. Top left: the effective modulus from the contact stiffness against a/t, with the two "
+           "half-space limits and Perriot and Barthel's integral equation (driver/references/layered.py, "
+           "accurate to about 1e-8; the tests check every quantity against it). Top right: the coated F "
+           "over the film's own Hertz at the same depth (the grey band is 1%). Bottom: pressure and axis "
+           "stresses of a soft film on a stiff substrate and a stiff film on a soft one.")
 
 
 def layers(frame: pd.DataFrame, profiles: pd.DataFrame, axis: pd.DataFrame, path: Path) -> Path:
@@ -76,20 +83,4 @@ def layers(frame: pd.DataFrame, profiles: pd.DataFrame, axis: pd.DataFrame, path
     return save(fig, path)
 
 
-CAPTION = ("A film (E, nu) bonded to a substrate (E2, nu2) or a rigid base, sphere at d = 0.02, exact "
-           "contact. Top left: the effective modulus from the contact stiffness against a/t, with the two "
-           "half-space limits and Perriot and Barthel's integral equation (driver/references/layered.py, "
-           "accurate to about 1e-8; the tests check every quantity against it). Top right: the coated F "
-           "over the film's own Hertz at the same depth (the grey band is 1%). Bottom: pressure and axis "
-           "stresses of a soft film on a stiff substrate and a stiff film on a soft one.")
-
-
-def draw_layers(tables: Tables, results: Path, png: Path) -> Path:
-    return layers(study(tables, "layers"), kept(results, "layers", "profile.csv"),
-                  kept(results, "layers", "axis.csv"), png)
-
-
-# this module's charts by name (the PNG's stem), each with its caption in REPORT.md
-CHARTS = {
-    "layers": Chart(draw_layers, CAPTION),
-}
+CHARTS = {"layers": Chart(layers, CAPTION, kept=("profile.csv", "axis.csv"))}

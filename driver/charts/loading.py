@@ -7,7 +7,13 @@ import matplotlib.pyplot as plt
 import matplotlib.ticker
 import pandas as pd
 
-from driver.charts.common import Chart, Tables, need, save, study
+from driver.charts.common import Chart, need, save
+
+CAPTION = ("Loading curves by -d (markers) against Hertz (lines), and two of the sphere's points again "
+           "by their load (-P, crosses): an elastic frictionless contact unloads along its loading curve. "
+           "Middle: the contact stiffness from the converged linearization against 2E*a. Right: the "
+           "cylinder, by its load per unit length: a and p0 against Hertz's relations (its depth depends on "
+           "the domain). Each point is its own run, started from its own coarse level.")
 
 
 def loading(frame: pd.DataFrame, path: Path) -> Path:
@@ -50,18 +56,4 @@ def loading(frame: pd.DataFrame, path: Path) -> Path:
     return save(fig, path)
 
 
-CAPTION = ("Loading curves by -d (markers) against Hertz (lines), and two of the sphere's points again "
-           "by their load (-P, crosses): an elastic frictionless contact unloads along its loading curve. "
-           "Middle: the contact stiffness from the converged linearization against 2E*a. Right: the "
-           "cylinder, by its load per unit length: a and p0 against Hertz's relations (its depth depends on "
-           "the domain). Each point is its own run, started from its own coarse level.")
-
-
-def draw_loading(tables: Tables, results: Path, png: Path) -> Path:
-    return loading(study(tables, "loading"), png)
-
-
-# this module's charts by name (the PNG's stem), each with its caption in REPORT.md
-CHARTS = {
-    "loading": Chart(draw_loading, CAPTION),
-}
+CHARTS = {"loading": Chart(loading, CAPTION)}

@@ -7,7 +7,11 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
-from driver.charts.common import ERRORS, QUANTITY_COLORS, Chart, Tables, need, save, study
+from driver.charts.common import ERRORS, QUANTITY_COLORS, Chart, need, save
+
+CAPTION = ("Errors against element size h/a at the contact for each series; the slopes are fitted "
+           "from the coarsest mesh until the curve meets its floor (penalty, domain or rounding), and "
+           "the legend names that range.")
 
 
 def _fit_range(h: np.ndarray, err: np.ndarray) -> slice:
@@ -50,16 +54,4 @@ def mesh_study(frame: pd.DataFrame, path: Path) -> Path:
     return save(fig, path)
 
 
-CAPTION = ("Errors against element size h/a at the contact for each series; the slopes are fitted "
-           "from the coarsest mesh until the curve meets its floor (penalty, domain or rounding), and "
-           "the legend names that range.")
-
-
-def draw_mesh(tables: Tables, results: Path, png: Path) -> Path:
-    return mesh_study(study(tables, "mesh"), png)
-
-
-# this module's charts by name (the PNG's stem), each with its caption in REPORT.md
-CHARTS = {
-    "mesh": Chart(draw_mesh, CAPTION),
-}
+CHARTS = {"mesh": Chart(mesh_study, CAPTION)}

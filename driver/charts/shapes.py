@@ -8,7 +8,14 @@ import matplotlib.ticker
 import numpy as np
 import pandas as pd
 
-from driver.charts.common import QUANTITY_COLORS, SHAPE_COLORS, Chart, Tables, kept, need, save, shape_label, study
+from driver.charts.common import QUANTITY_COLORS, SHAPE_COLORS, Chart, need, save, shape_label
+
+CAPTION = ("Left: the exact spherical cap against Hertz's parabola of the same radius at the same depth: "
+           "the FE runs (markers) and Sneddon's exact sphere against Hertz (lines). Middle: F(d) of each "
+           "indenter, FE (markers) and Sneddon (lines), with the fitted slopes. Right: each shape's largest "
+           "error against Sneddon over n (exact contact); the punch is measured on F and its edge factor K, "
+           "the cone on F and a (its pressure is singular at the tip). Bottom right: the pressure profiles "
+           "at d = 0.02 against Sneddon's.")
 
 
 def shapes(frame: pd.DataFrame, profiles: pd.DataFrame, path: Path) -> Path:
@@ -88,19 +95,4 @@ def shapes(frame: pd.DataFrame, profiles: pd.DataFrame, path: Path) -> Path:
     return save(fig, path)
 
 
-CAPTION = ("Left: the exact spherical cap against Hertz's parabola of the same radius at the same depth: "
-           "the FE runs (markers) and Sneddon's exact sphere against Hertz (lines). Middle: F(d) of each "
-           "indenter, FE (markers) and Sneddon (lines), with the fitted slopes. Right: each shape's largest "
-           "error against Sneddon over n (exact contact); the punch is measured on F and its edge factor K, "
-           "the cone on F and a (its pressure is singular at the tip). Bottom right: the pressure profiles "
-           "at d = 0.02 against Sneddon's.")
-
-
-def draw_shapes(tables: Tables, results: Path, png: Path) -> Path:
-    return shapes(study(tables, "shapes"), kept(results, "shapes", "profile.csv"), png)
-
-
-# this module's charts by name (the PNG's stem), each with its caption in REPORT.md
-CHARTS = {
-    "shapes": Chart(draw_shapes, CAPTION),
-}
+CHARTS = {"shapes": Chart(shapes, CAPTION, kept=("profile.csv",))}

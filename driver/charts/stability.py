@@ -7,7 +7,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
-from driver.charts.common import CELL_EDGE, STATUS_COLORS, STATUS_HATCHES, Chart, Tables, need, save, study
+from driver.charts.common import CELL_EDGE, STATUS_COLORS, STATUS_HATCHES, Chart, need, save
+
+CAPTION = ("Left: fixed point, kpen x omega, cells coloured by status with the iteration count; "
+           "dashed: the predicted limit kpen = (2/omega - 1)/mu. Middle: Newton from each start "
+           "(the previous level's contact zone, zero, the Hertz zone), with and without line search "
+           "and continuation, over the penalty in units of E*/h. Right: lagrange and Uzawa over "
+           "the augmentation parameter.")
 
 
 def _grid(ax, frame: pd.DataFrame, xcol: str, ycol: str, text) -> None:
@@ -65,18 +71,4 @@ def stability_map(frame: pd.DataFrame, path: Path) -> Path:
     return save(fig, path, layout=False)
 
 
-CAPTION = ("Left: fixed point, kpen x omega, cells coloured by status with the iteration count; "
-           "dashed: the predicted limit kpen = (2/omega - 1)/mu. Middle: Newton from each start "
-           "(the previous level's contact zone, zero, the Hertz zone), with and without line search "
-           "and continuation, over the penalty in units of E*/h. Right: lagrange and Uzawa over "
-           "the augmentation parameter.")
-
-
-def draw_stability(tables: Tables, results: Path, png: Path) -> Path:
-    return stability_map(study(tables, "stability"), png)
-
-
-# this module's charts by name (the PNG's stem), each with its caption in REPORT.md
-CHARTS = {
-    "stability": Chart(draw_stability, CAPTION),
-}
+CHARTS = {"stability": Chart(stability_map, CAPTION)}

@@ -8,8 +8,13 @@ import matplotlib.pyplot as plt
 import matplotlib.ticker
 import pandas as pd
 
-from driver.charts.common import METHOD_STYLE, Chart, Tables, kept, need, save, study
+from driver.charts.common import METHOD_STYLE, Chart, need, save
 from driver.schema import max_error
+
+OVER_MODELLING_CAPTION = ("The same sphere solved axisymmetric (solid) and in 3D (dashed, a quarter of the "
+                          "half-space, the 2D section revolved) over meshes: error against wall time, peak memory and "
+                          "dofs. The title compares, at the most accurate converged 3D case, the cheapest axi case "
+                          "that is at least as accurate (same method).")
 
 
 def matched_accuracy(frame: pd.DataFrame) -> pd.DataFrame:
@@ -102,29 +107,12 @@ def ellipses(frame: pd.DataFrame, outline: pd.DataFrame, profile: pd.DataFrame, 
     fig.suptitle("Ellipsoids in 3D against elliptical Hertz")
     return save(fig, path)
 
-
-OVER_MODELLING_CAPTION = ("The same sphere solved axisymmetric (solid) and in 3D (dashed, a quarter of the "
-                          "half-space, the 2D section revolved) over meshes: error against wall time, peak memory and "
-                          "dofs. The title compares, at the most accurate converged 3D case, the cheapest axi case "
-                          "that is at least as accurate (same method).")
-
 ELLIPSES_CAPTION = ("Left: the contact outline (gap threshold along rays) for each ellipsoid at its finest mesh, "
                     "against Hertz's ellipse. Right: the pressure along both axes of the most elongated one "
                     "against p0 sqrt(1 - (s/semi-axis)^2).")
 
 
-def draw_over_modelling(tables: Tables, results: Path, png: Path) -> Path:
-    return over_modelling(study(tables, "3d"), png)
-
-
-def draw_ellipses(tables: Tables, results: Path, png: Path) -> Path:
-    return ellipses(study(tables, "3d"), kept(results, "3d", "outline.csv"),
-                    kept(results, "3d", "profile.csv"),
-                    kept(results, "3d", "profile_y.csv"), png)
-
-
-# this module's charts by name (the PNG's stem), each with its caption in REPORT.md
 CHARTS = {
-    "over_modelling": Chart(draw_over_modelling, OVER_MODELLING_CAPTION),
-    "ellipses": Chart(draw_ellipses, ELLIPSES_CAPTION),
+    "over_modelling": Chart(over_modelling, OVER_MODELLING_CAPTION),
+    "ellipses": Chart(ellipses, ELLIPSES_CAPTION, kept=("outline.csv", "profile.csv", "profile_y.csv")),
 }

@@ -7,8 +7,11 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
-from driver.charts.common import ERRORS, Chart, Tables, need, save, study
+from driver.charts.common import ERRORS, Chart, need, save
 from driver.schema import max_error
+
+CAPTION = ("The same dimensionless scenes given in three unit systems: the errors agree to rounding "
+           "(the spread under each scene is the largest difference of any relative error).")
 
 
 def units_check(frame: pd.DataFrame, path: Path) -> Path:
@@ -33,15 +36,4 @@ def units_check(frame: pd.DataFrame, path: Path) -> Path:
     return save(fig, path)
 
 
-CAPTION = ("The same dimensionless scenes given in three unit systems: the errors agree to rounding "
-           "(the spread under each scene is the largest difference of any relative error).")
-
-
-def draw_units(tables: Tables, results: Path, png: Path) -> Path:
-    return units_check(study(tables, "units"), png)
-
-
-# this module's charts by name (the PNG's stem), each with its caption in REPORT.md
-CHARTS = {
-    "units": Chart(draw_units, CAPTION),
-}
+CHARTS = {"units": Chart(units_check, CAPTION)}

@@ -7,7 +7,13 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from driver.charts.common import Chart, Tables, need, save
+from driver.charts.common import Chart, need, save
+
+CAPTION = ("Pointwise against recovered peak pressure error (converged axisymmetric Newton runs of "
+           "Hertz's parabola), against kpen h^2/(8R) in units of p0: the pressure a penalty would "
+           "build on the sag of a P1 chord under the curved indenter. P1's contact forms use the "
+           "indenter's interpolant, so no run builds it, and the pointwise peak stays within about "
+           "1% of the recovered one at any penalty.")
 
 
 def zigzag(tables: dict, path: Path) -> Path:
@@ -32,18 +38,4 @@ def zigzag(tables: dict, path: Path) -> Path:
     return save(fig, path)
 
 
-CAPTION = ("Pointwise against recovered peak pressure error (converged axisymmetric Newton runs of "
-           "Hertz's parabola), against kpen h^2/(8R) in units of p0: the pressure a penalty would "
-           "build on the sag of a P1 chord under the curved indenter. P1's contact forms use the "
-           "indenter's interpolant, so no run builds it, and the pointwise peak stays within about "
-           "1% of the recovered one at any penalty.")
-
-
-def draw_zigzag(tables: Tables, results: Path, png: Path) -> Path:
-    return zigzag(tables, png)
-
-
-# this module's charts by name (the PNG's stem), each with its caption in REPORT.md
-CHARTS = {
-    "zigzag": Chart(draw_zigzag, CAPTION),
-}
+CHARTS = {"zigzag": Chart(zigzag, CAPTION)}
