@@ -229,7 +229,7 @@ def test_a_3d_estimate_reads_a_resolved_semi_axis_and_p0_at_second_order(solve):
 @pytest.mark.parametrize("method", ["newton", "lagrange"])
 def test_a_3d_sphere_at_n_4_keeps_the_promise(solve, method):
     """n = 4 pairs with n = 2, which is not asymptotic: its Richardson part is read at first
-    order (steps/estimate.idp)."""
+    order (solve/estimate.idp)."""
     run = solve("-model", "3d", "-method", method, "-n", "4")
     s = run.summary
     assert s["model"] == "3d" and s["n"] == 4, run.output

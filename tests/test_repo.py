@@ -76,17 +76,42 @@ def test_a_skip_without_an_allowed_reason_fails_the_suite(tmp_path, allow, code)
 def test_every_mutation_finds_the_code_it_breaks():
     # a mutation whose code has since changed breaks nothing: make mutate reported it only when
     # run, and two had gone stale that way
-    from mutations import MUTATIONS
-    stale = [m.name for m in MUTATIONS if (ROOT / m.path).read_text().count(m.old) != 1]
+    from mutations import MUTATIONS, locate
+    stale = [m.name for m in MUTATIONS if locate(m) is None]
     assert not stale, stale
+
+
+def test_every_mutation_names_tests_that_exist():
+    from mutations import MUTATIONS
+    missing = []
+    for mutation in MUTATIONS:
+        for test in mutation.tests:
+            path, _, name = test.partition("::")
+            if not (ROOT / path).is_file() or (name and f"def {name}(" not in (ROOT / path).read_text()):
+                missing.append(f"{mutation.name}: {test}")
+    assert not missing, missing
+
+
+def test_a_mutation_follows_its_code_to_another_file(tmp_path, monkeypatch):
+    import mutations
+    (tmp_path / "edp" / "lib").mkdir(parents=True)
+    (tmp_path / "edp" / "lib" / "moved.idp").write_text("real x = 1;\nreal y = 2;\n")
+    (tmp_path / "edp" / "lib" / "other.idp").write_text("real z = 1;\n")
+    monkeypatch.setattr(mutations, "ROOT", tmp_path)
+    moved = mutations.Mutation("x", "edp/lib/gone.idp", "real x = 1;", "real x = 2;", [])
+    assert mutations.locate(moved) == tmp_path / "edp" / "lib" / "moved.idp"
+    twice = mutations.Mutation("z", "edp/lib/gone.idp", "= 1;", "= 2;", [])
+    assert mutations.locate(twice) is None  # in two files: no guess
+    changed = mutations.Mutation("w", "edp/lib/moved.idp", "real w = 1;", "real w = 2;", [])
+    assert mutations.locate(changed) is None
 
 
 # -- every path the docs and the comments cite exists -----------------------------------------
 
 # a path from the repository's root: edp/lib/fe/section.idp, driver/charts/, results/REPORT.md
 ROOTED = re.compile(r"(?<![\w./-])((?:edp|driver|tests|docs|results|bench)(?:/[\w.+-]+)+/?)")
-# what an .idp file's comment or include names: lib/ from edp/, steps/, fe/, methods/ from edp/lib/
-IN_EDP = re.compile(r"(?<![\w./-])((lib|steps|fe|methods)/[\w.+-]+\.idp)\b")
+# what an .idp file's comment or include names: lib/ from edp/, solve/, post/, fe/, methods/ from edp/lib/
+IN_EDP = re.compile(r"(?<![\w./-])((lib|solve|post|fe|methods)/[\w.+-]+\.idp)\b")
 # a file named alone (messages.idp, hertz_reference.py): some file of the repository has that name
 BARE = re.compile(r"(?<![\w./-])([\w+-]+\.(?:idp|edp|py|md|cpp))\b")
 # outputs a run or a sweep writes, never committed: cited as places, not as files
@@ -167,6 +192,6 @@ def test_every_path_the_docs_and_comments_cite_exists():
 def test_the_citation_check_finds_each_kind_of_path():
     names = {"options.idp", "conftest.py"}
     text = ("edp/lib/options.idp, edp/lib/gone.idp, docs/gone.md, driver/charts/, driver/gone/, lib/options.idp, "
-            "steps/gone.idp, fe/section.idp, options.idp, conftest.py, gone.py, results/local/bench.csv, driver/edp/")
-    assert list(_missing(text, names)) == ["edp/lib/gone.idp", "docs/gone.md", "driver/gone/", "steps/gone.idp",
+            "solve/gone.idp, fe/section.idp, options.idp, conftest.py, gone.py, results/local/bench.csv, driver/edp/")
+    assert list(_missing(text, names)) == ["edp/lib/gone.idp", "docs/gone.md", "driver/gone/", "solve/gone.idp",
                                            "gone.py"]
