@@ -41,7 +41,7 @@ TEST_WORKERS = -n $(JOBS) --dist loadfile
 test:                             ## the whole test suite, as CI runs it (about 8 minutes on 2 cores; writes nothing tracked)
 	$(PYTHON) -m pytest -q $(TEST_WORKERS) tests
 
-test-fast:                        ## the quick tier for the edit-run loop: pure-Python tests and a few solver runs
+test-fast:                        ## the quick tier for the edit-run loop: every test not marked slow
 	$(PYTHON) -m pytest -q $(TEST_WORKERS) -m "not slow" tests
 
 lint:                             ## FreeFEM compiles (every branch: dimension, order, formulation), ruff and mypy are clean
