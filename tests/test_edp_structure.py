@@ -49,7 +49,7 @@ def owners(files) -> dict[str, set]:
     return found
 
 
-def foreign_writes(files) -> list[str]:
+def foreign_writes(files, root=EDP_DIR) -> list[str]:
     """'file:line name' for each write to a global outside the files that declare it
     (the 2D and 3D branches may both declare one). A local of the same name
     declared in the function is not the global."""
@@ -70,7 +70,7 @@ def foreign_writes(files) -> list[str]:
                 name = match.group(1)
                 if name in locals_here or re.search(r"[,(]\s*$", line[:match.start()]):  # a named argument
                     continue
-                bad.append(f"{path.relative_to(EDP_DIR)}:{number} {name}")
+                bad.append(f"{path.relative_to(root)}:{number} {name}")
     return bad
 
 
@@ -85,16 +85,10 @@ def test_the_owner_check_finds_a_write_from_another_file(tmp_path):
     other.write_text("func int build() {\n  growthCap = 2;  // a hidden parameter\n  return 0;\n}\n")
     local = tmp_path / "c.idp"
     local.write_text("func int mine() {\n  real growthCap = 1;\n  growthCap = 3;\n  return 0;\n}\n")
-    global EDP_DIR
-    kept = EDP_DIR
-    EDP_DIR = tmp_path
-    try:
-        assert foreign_writes([owner, other, local]) == ["b.idp:2 growthCap"]
-    finally:
-        EDP_DIR = kept
+    assert foreign_writes([owner, other, local], root=tmp_path) == ["b.idp:2 growthCap"]
 
 
-def top_level_statements(path) -> list[str]:
+def top_level_statements(path, root=EDP_DIR) -> list[str]:
     """Statements at the top level of an included file that act rather than define:
     a call, an if or a while, an exit (a loop that fills a constant table is a definition)."""
     acts, depth = [], 0
@@ -104,7 +98,7 @@ def top_level_statements(path) -> list[str]:
                 re.match(r"^(if|while)\s*\(", stripped)
                 or re.match(r"^exit", stripped)
                 or re.match(r"^[A-Za-z_]\w*\s*\(.*\)\s*;$", stripped)):
-            acts.append(f"{path.relative_to(EDP_DIR)}:{number} {stripped}")
+            acts.append(f"{path.relative_to(root)}:{number} {stripped}")
         depth += line.count("{") - line.count("}")
     return acts
 
@@ -115,15 +109,10 @@ def test_included_files_only_define():
 
 
 def test_the_define_check_finds_a_file_that_acts(tmp_path):
-    global EDP_DIR
-    kept = EDP_DIR
-    EDP_DIR = tmp_path
-    try:
-        acting = tmp_path / "acting.idp"
-        acting.write_text("real x = 1;\nfunc int f() {\n  if (x > 0) x = 2;\n  return 0;\n}\nif (x > 0) x = 3;\nreadTable();\n")
-        assert [a.split(" ", 1)[0] for a in top_level_statements(acting)] == ["acting.idp:6", "acting.idp:7"]
-    finally:
-        EDP_DIR = kept
+    acting = tmp_path / "acting.idp"
+    acting.write_text("real x = 1;\nfunc int f() {\n  if (x > 0) x = 2;\n  return 0;\n}\n"
+                      "if (x > 0) x = 3;\nreadTable();\n")
+    assert [a.split(" ", 1)[0] for a in top_level_statements(acting, root=tmp_path)] == ["acting.idp:6", "acting.idp:7"]
 
 
 def test_the_shape_table_has_one_row_per_shape():
