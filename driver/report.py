@@ -7,9 +7,7 @@ the report with one error (ReportError).
 """
 from __future__ import annotations
 
-import datetime
 import platform
-import subprocess
 from collections.abc import Callable
 from pathlib import Path
 
@@ -17,7 +15,7 @@ import matplotlib
 import numpy as np
 import pandas as pd
 
-from driver import charts, freefem, layout, studytable
+from driver import charts, layout, studytable
 from driver.charts import Chart
 from driver.charts.common import draw, sphere_cases
 from driver.errors import ReportError, TableError
@@ -80,16 +78,10 @@ def _fmt_3d(frame: pd.DataFrame) -> str:
     return "\n".join(lines)
 
 
-def _git(*args: str) -> str:
-    try:
-        return subprocess.run(["git", *args], cwd=freefem.EDP_DIR, capture_output=True, text=True,
-                              check=False).stdout.strip()
-    except OSError:
-        return ""
-
-
 def environment(results_dir: Path) -> list[str]:
-    """Versions and dates: the sweep's machine (recorded when it ran) and this report's."""
+    """Versions: the sweep's machine (recorded when it ran: date, commit) and the libraries that
+    draw this report. No date or commit of the report's own: drawn again from the same tables
+    it is the same file, so a fresh clone's `make report` leaves git status clean."""
     lines = []
     env_path = results_dir / layout.ENVIRONMENT_FILE
     try:
@@ -98,9 +90,8 @@ def environment(results_dir: Path) -> list[str]:
         env = pd.DataFrame()  # an unreadable record only costs the report its sweep line
     if len(env):
         lines.append("Sweep: " + ", ".join(f"{k} {v}" for k, v in env.astype(str).iloc[0].items()) + ".")
-    lines.append(f"Report: written {datetime.datetime.now().isoformat(timespec='seconds')} at commit "
-                 f"{_git('rev-parse', '--short', 'HEAD') or 'unknown'}, Python {platform.python_version()}, "
-                 f"pandas {pd.__version__}, numpy {np.__version__}, matplotlib {matplotlib.__version__}.")
+    lines.append(f"Report: drawn with Python {platform.python_version()}, pandas {pd.__version__}, "
+                 f"numpy {np.__version__}, matplotlib {matplotlib.__version__}.")
     return lines
 
 

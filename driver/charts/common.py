@@ -91,12 +91,18 @@ def shape_label(row: pd.Series) -> str:
     return str(row["shape"])
 
 
+# no text chunks: a chart redrawn from the same tables is the same bytes on any matplotlib
+# (its default names its version in a Software chunk)
+PNG_METADATA = {"Software": None}
+
+
 def save(fig, path: Path, layout: bool = True) -> Path:
     """The chart as PNG, whole or not at all (a kill or a full disk keeps the old one)."""
     try:
         if layout:
             fig.tight_layout()
-        files.replace_atomically(path, lambda tmp: fig.savefig(tmp, dpi=110, format="png"), ReportError)
+        files.replace_atomically(path, lambda tmp: fig.savefig(tmp, dpi=110, format="png", metadata=PNG_METADATA),
+                                 ReportError)
     finally:
         plt.close(fig)
     return path
