@@ -2,11 +2,14 @@
 
 hertz.edp owns its options (names, kinds, defaults, ranges, meanings), its exit
 codes and the columns of summary.csv; the driver asks for them (`-options`,
-`-exits`, `-columns`) instead of copying them, and caches each answer per
-solver fingerprint. Options and columns may grow: nothing here lists them.
+`-exits`, `-columns`) instead of copying them. Each answer is kept in the user's
+cache folder (layout.cache_dir) under the solver's fingerprint and the FreeFem++
+that gave it: asking costs a FreeFEM start, three of them more than a default
+case. Options and columns may grow: nothing here lists them.
 """
 from __future__ import annotations
 
+import contextlib
 import csv
 import functools
 import hashlib
@@ -16,8 +19,10 @@ import os
 import re
 import shutil
 import subprocess
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TypeVar
 
 from driver import layout
 from driver.errors import OptionError, SetupError
@@ -27,6 +32,7 @@ SETUP_HINT = "run 'make setup' (driver/setup.sh) to install FreeFEM"
 EDP_DIR = layout.EDP_DIR  # a module global, so that a test can point it at a copy
 
 Value = int | float | str
+T = TypeVar("T")
 
 
 # OpenBLAS picks its kernels by CPU model. The one Debian ships (0.3.21) does not know
@@ -121,6 +127,53 @@ def _query(flag: str) -> str:
         raise SetupError(f"hertz.edp {flag} failed (exit {proc.returncode}): "
                          + " ".join(proc.stdout[-300:].split()))
     return proc.stdout
+
+
+CACHE_ENTRIES = 64  # answers kept: a few solver versions and FreeFEM installs, each three files
+
+
+def _cache_file(flag: str, fingerprint: str) -> Path:
+    """Where hertz.edp's answer to flag is kept: per solver code and per FreeFem++ binary
+    (another FreeFEM, or a stand-in on PATH, may answer otherwise)."""
+    binary = os.path.realpath(check_freefem())
+    try:
+        stat = os.stat(binary)
+        identity = f"{binary}\0{stat.st_size}\0{stat.st_mtime_ns}"
+    except OSError:
+        identity = binary
+    solver = hashlib.sha256(identity.encode()).hexdigest()[:12]
+    return layout.cache_dir() / f"{fingerprint}-{solver}{flag}.txt"
+
+
+def _keep(path: Path, text: str) -> None:
+    """Store an answer whole (a temporary file renamed), and drop the oldest beyond CACHE_ENTRIES.
+    A cache that cannot be written costs only speed."""
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.part")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        tmp.write_text(text)
+        os.replace(tmp, path)
+        entries = sorted(path.parent.glob("*.txt"), key=lambda p: p.stat().st_mtime_ns)
+        for old in entries[:-CACHE_ENTRIES]:
+            old.unlink(missing_ok=True)
+    except OSError:
+        with contextlib.suppress(OSError):
+            tmp.unlink(missing_ok=True)
+
+
+def _answer(flag: str, fingerprint: str, parse: Callable[[str], T]) -> T:
+    """hertz.edp's answer to flag, parsed: from the cache when this solver code and this
+    FreeFem++ gave it before, else asked and kept. A cached answer that does not parse
+    (cut, or written by hand) is asked again."""
+    path = _cache_file(flag, fingerprint)
+    try:
+        return parse(path.read_text())
+    except (OSError, UnicodeDecodeError, SetupError):
+        pass
+    text = _query(flag)
+    parsed = parse(text)
+    _keep(path, text)
+    return parsed
 
 
 def _table(text: str, header: str) -> list[list[str]]:
@@ -227,10 +280,17 @@ class Option:
             raise wrong from None
 
 
+def _option_table(text: str) -> tuple[Option, ...]:
+    rows = _table(text, "name,kind,default,range,help")
+    try:
+        return tuple(Option(r[0].lstrip("-"), r[1], r[2], r[3], r[4]) for r in rows if r and r[0].startswith("-"))
+    except IndexError:
+        raise SetupError("hertz.edp -options printed a malformed table") from None
+
+
 @functools.cache
 def _options(fingerprint: str) -> tuple[Option, ...]:
-    rows = _table(_query("-options"), "name,kind,default,range,help")
-    return tuple(Option(r[0].lstrip("-"), r[1], r[2], r[3], r[4]) for r in rows if r and r[0].startswith("-"))
+    return _answer("-options", fingerprint, _option_table)
 
 
 def options() -> dict[str, Option]:
@@ -266,13 +326,17 @@ class Exit:
     meaning: str
 
 
-@functools.cache
-def _exits(fingerprint: str) -> tuple[Exit, ...]:
-    rows = _table(_query("-exits"), "status,code,meaning")
+def _exit_table(text: str) -> tuple[Exit, ...]:
+    rows = _table(text, "status,code,meaning")
     try:
         return tuple(Exit(r[0], int(r[1]), r[2]) for r in rows if r)
     except (ValueError, IndexError):
         raise SetupError("hertz.edp -exits printed a malformed table") from None
+
+
+@functools.cache
+def _exits(fingerprint: str) -> tuple[Exit, ...]:
+    return _answer("-exits", fingerprint, _exit_table)
 
 
 def exits() -> dict[str, Exit]:
@@ -287,13 +351,17 @@ def exit_code(status: str) -> int:
 _IDENTIFIER = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
 
-@functools.cache
-def _columns(fingerprint: str) -> tuple[str, ...]:
-    for line in _query("-columns").splitlines():
+def _column_list(text: str) -> tuple[str, ...]:
+    for line in text.splitlines():
         names = line.split(",")
         if len(names) > 1 and all(_IDENTIFIER.match(n) for n in names):
             return tuple(names)
     raise SetupError("hertz.edp -columns printed no column list")
+
+
+@functools.cache
+def _columns(fingerprint: str) -> tuple[str, ...]:
+    return _answer("-columns", fingerprint, _column_list)
 
 
 def summary_columns() -> list[str]:

@@ -32,6 +32,18 @@ RESERVED_NAMES = frozenset({RUNS, SINGLE, FIELD, STALE, LOCAL, "bench", Path(ENV
                             Path(REPORT_FILE).stem})
 
 
+CACHE_FOLDER = "hertz-contact"
+
+
+def cache_dir() -> Path:
+    """The user's cache folder (hertz.edp's answers to -options, -columns, -exits):
+    $XDG_CACHE_HOME/hertz-contact, else ~/.cache/hertz-contact. Never the package's
+    folder, which a system install may not let its users write."""
+    base = os.environ.get("XDG_CACHE_HOME", "")
+    # the XDG specification: a relative value is invalid and is ignored
+    return (Path(base) if os.path.isabs(base) else Path.home() / ".cache") / CACHE_FOLDER
+
+
 def user_path(text: str | Path) -> Path:
     """A path as the user typed it, made absolute against their working directory once,
     before anything starts (a relative path handed on would be read from elsewhere)."""

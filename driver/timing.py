@@ -4,6 +4,7 @@ Times are wall-clock seconds of whole processes (what a user waits for); the
 solver's CPU breakdown comes from summary.csv. Configurations run in turn
 (A B C ... A B C ...), so a slow spell of the machine touches all of them.
 The table goes to an untracked file (results/local/bench.csv by default).
+`hertz run` is timed against the bare FreeFEM command it wraps, in turn.
 The Dask path is measured against the local pool, both with 2 workers on this
 machine: one case at a time (what the scheduler adds to a case: submission,
 transfer of the row and files) and in batches that keep both workers busy
@@ -13,6 +14,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import shutil
 import statistics
 import subprocess
@@ -98,6 +100,41 @@ def tamaas_run(n: int) -> tuple[float, dict] | None:
 
 
 DASK_TARGET = 0.05  # at most 5% of a default case's time per case
+
+# `hertz run` against the FreeFEM command it wraps: at most CLI_RATIO times it plus CLI_EXTRA
+# seconds (a Python start, the driver's imports, reading the answers it keeps in the user's cache)
+CLI_RATIO, CLI_EXTRA = 1.3, 0.3
+HERTZ_RUN = "hertz run, default case"
+BARE_RUN = "FreeFem++ hertz.edp, default case (beside hertz run)"
+
+
+def cli_against_bare(root: Path, repeat: int = 5) -> dict[str, list[float]]:
+    """Wall times of `hertz run` and of the bare FreeFEM command it wraps, default case, in turn.
+    One `hertz run` first: the first run of new solver code asks hertz.edp for its tables."""
+    # this driver whatever is installed: the console script `hertz` is the same one Python start
+    command = [sys.executable, "-m", "driver"]
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [str(layout.PACKAGE_DIR.parent),
+                                                                     os.environ.get("PYTHONPATH")])))
+    times: dict[str, list[float]] = {HERTZ_RUN: [], BARE_RUN: []}
+    root.mkdir(parents=True, exist_ok=True)
+
+    def hertz_run(out: Path) -> float:
+        start = time.perf_counter()
+        proc = subprocess.run([*command, "run", "--out", str(out)], cwd=root, env=env, capture_output=True,
+                              check=False)
+        wall = time.perf_counter() - start
+        if proc.returncode != 0:
+            raise SweepError(f"hertz run failed in the benchmark (exit {proc.returncode}): "
+                             + " ".join(proc.stderr.decode(errors="replace").split())[:300])
+        return wall
+
+    hertz_run(root / "warm")
+    for k in range(repeat):
+        bare = root / f"bare{k}"
+        bare.mkdir()
+        times[BARE_RUN].append(direct_run(Case(), bare)[0])
+        times[HERTZ_RUN].append(hertz_run(root / f"hertz{k}"))
+    return times
 
 
 def _through(executor: Executor, workdir: Path, count: int, summary: list[str], columns: list[str]) -> float:
@@ -195,6 +232,11 @@ def target_lines(table: pd.DataFrame, starts: pd.DataFrame) -> list[str]:
              ellipsoid.wall_median_s <= ELLIPSOID_WALL and ellipsoid.max_abs_err <= ELLIPSOID_ERROR,
              f"{ellipsoid.wall_median_s:.1f} s, max error {ellipsoid.max_abs_err:.2%} (p0, F, a, b)",
              f"at most {ELLIPSOID_WALL:g} s and {ELLIPSOID_ERROR:.1%}")
+    if HERTZ_RUN in by.index and BARE_RUN in by.index:
+        hertz, bare = by.loc[HERTZ_RUN, "wall_median_s"], by.loc[BARE_RUN, "wall_median_s"]
+        line("hertz run against the bare FreeFEM command", hertz <= CLI_RATIO * bare + CLI_EXTRA,
+             f"{hertz:.3f} s against {bare:.3f} s (ratio {hertz / bare:.2f})",
+             f"at most {CLI_RATIO:g} x bare + {CLI_EXTRA:g} s = {CLI_RATIO * bare + CLI_EXTRA:.3f} s")
     pool, dask = (f"default per case, 2 workers, {name}, sweep" for name in ("local pool", "dask"))
     if pool in by.index and dask in by.index:
         overhead = by.loc[dask, "wall_median_s"] / by.loc[pool, "wall_median_s"] - 1
@@ -231,6 +273,7 @@ def bench(out: Path, repeat: int = 5) -> int:
             start = time.perf_counter()
             run_case(Case(), root / "driver", timeout=600)
             through.append(time.perf_counter() - start)
+        cli_times = cli_against_bare(root / "cli", repeat)
         dask_times = dask_overhead(root / "dask", repeat)
         # Newton from each start over the penalty (iterations, all levels)
         starts = []
@@ -277,6 +320,8 @@ def bench(out: Path, repeat: int = 5) -> int:
                      "status": "converged" if peer_row["converged"] else "not converged",
                      "iterations": peer_row["iterations"],
                      **{k: peer_row.get(k) for k in ERROR_COLUMNS}})
+    for name, values in cli_times.items():
+        rows.append({"configuration": name, "wall_median_s": statistics.median(values), "wall_min_s": min(values)})
     if dask_times is not None:
         for name, values in dask_times.items():
             rows.append({"configuration": f"default per case, 2 workers, {name}",
