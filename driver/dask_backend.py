@@ -17,7 +17,6 @@ from __future__ import annotations
 import asyncio
 import concurrent.futures
 import logging
-import os
 import shutil
 import signal
 import socket
@@ -27,7 +26,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-from driver import freefem
+from driver import files, freefem
 from driver.cases import Case
 from driver.errors import HertzError, SweepError
 from driver.processes import CaseLock, reap_leftover
@@ -39,9 +38,32 @@ CANCEL_POLL = 0.2     # seconds between a running task's looks at its own state
 SCHEDULER_LOST = ("scheduler-connection-lost", "scheduler-restart")  # reasons of a cancelled future
 
 
+REMOTE_SCHEMES = ("tcp", "tls", "ws", "wss", "ucx")  # Dask's, but inproc: (its own process only)
+
+
+def check_address(address: str) -> None:
+    """Refuse at once an address no scheduler can have (ValueError): a scheme other than
+    Dask's network ones, or a port outside 1..65535 (which Dask would wait 30 s on)."""
+    scheme, sep, rest = address.partition("://")
+    if not sep:
+        scheme, rest = "tcp", address  # Dask reads host:port as tcp://host:port
+    if scheme not in REMOTE_SCHEMES:
+        raise ValueError(f"a scheduler address is SCHEME://HOST:PORT (SCHEME one of {', '.join(REMOTE_SCHEMES)}) "
+                         f"or local:N, got {address!r}")
+    host, colon, port = rest.rpartition(":")
+    if colon and not port.isdigit() and "]" not in port:
+        raise ValueError(f"the port in {address!r} must be a whole number in 1..65535")
+    if colon and port.isdigit() and not 1 <= int(port) <= 65535:
+        raise ValueError(f"the port in {address!r} must be in 1..65535, got {port}")
+    if not (host if colon else rest).strip("[]"):
+        raise ValueError(f"no host in the scheduler address {address!r}")
+
+
 def parse_local(address: str) -> int | None:
-    """N for 'local:N' (a LocalCluster of N single-threaded workers), else None."""
+    """N for 'local:N' (a LocalCluster of N single-threaded workers), else None after
+    checking the address (check_address)."""
     if not address.startswith(LOCAL_PREFIX):
+        check_address(address)
         return None
     text = address[len(LOCAL_PREFIX):]
     if not text.isdigit() or int(text) < 1:
@@ -106,13 +128,13 @@ def run_on_worker(case: Case, study: str, sweep_id: str, timeout: float, summary
     watcher.start()
     try:
         row = run_case(case, workdir, timeout, study, summary_columns, jobs, repeats)
-        files = {p.name: p.read_bytes() for p in sorted(workdir.glob("*"))
+        outputs = {p.name: p.read_bytes() for p in sorted(workdir.glob("*"))
                  if p.is_file() and not p.is_symlink() and (p.suffix == ".csv" or p.name == LOG_FILE)}
     finally:
         finished.set()
         watcher.join()
         shutil.rmtree(workdir, ignore_errors=True)
-    return {"row": row, "files": files, "worker": worker.address}
+    return {"row": row, "files": outputs, "worker": worker.address}
 
 
 def _quiet_on_ctrl_c(start):
@@ -135,13 +157,10 @@ def failure_row(case: Case, study: str, columns: list[str], error: str) -> dict:
 
 
 def _write_file(path: Path, data: bytes) -> None:
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.part")
     try:
-        tmp.write_bytes(data)
-        os.replace(tmp, path)
-    except OSError as exc:
-        tmp.unlink(missing_ok=True)
-        raise SweepError(f"cannot write {path}: {exc.strerror}; the rows written so far are kept") from None
+        files.write_bytes_atomically(path, data, SweepError)
+    except SweepError as exc:
+        raise SweepError(f"{exc}; the rows written so far are kept") from None
 
 
 class DaskExecutor:
@@ -153,7 +172,10 @@ class DaskExecutor:
         except ImportError:
             raise SweepError("--scheduler needs Dask: pip install -e '.[dask]'") from None
         self.cluster = None
-        workers = parse_local(address)
+        try:
+            workers = parse_local(address)
+        except ValueError as exc:
+            raise SweepError(str(exc)) from None
         try:
             if workers is not None:
                 # any free port for its web server: another local cluster may hold 8787. Logs only

@@ -2,6 +2,8 @@
 from __future__ import annotations
 
 import os
+import shutil
+import tempfile
 from collections.abc import Callable
 from pathlib import Path
 
@@ -17,11 +19,17 @@ def refuse_symlink(path: Path, what: str, error: type[HertzError] = HertzError) 
 
 def replace_atomically(path: Path, write: Callable[[Path], object], error: type[HertzError] = HertzError) -> None:
     """write(tmp) into a temporary file beside path, fsync it, then rename it over path:
-    a kill or a full disk leaves the old file or the new one, never a cut one."""
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.part")
+    a kill or a full disk leaves the old file or the new one, never a cut one.
+
+    tmp lies in a folder made for this write alone (mkdtemp: a fresh name, created
+    exclusively, mode 0700), so no link planted under a predictable name is followed;
+    the rename replaces a link at path itself, never its target."""
+    folder: Path | None = None
     try:
+        folder = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent))
+        tmp = folder / path.name  # the same suffix: a writer may pick its format by it
         write(tmp)
-        fd = os.open(tmp, os.O_RDONLY)
+        fd = os.open(tmp, os.O_RDONLY | os.O_NOFOLLOW)
         try:
             os.fsync(fd)
         finally:
@@ -35,8 +43,22 @@ def replace_atomically(path: Path, write: Callable[[Path], object], error: type[
     except OSError as exc:
         raise error(f"cannot write {path}: {exc.strerror or exc}") from None
     finally:
-        tmp.unlink(missing_ok=True)  # a failure or Ctrl-C leaves no part file
+        if folder is not None:
+            shutil.rmtree(folder, ignore_errors=True)  # a failure or Ctrl-C leaves no part file
 
 
 def write_text_atomically(path: Path, text: str, error: type[HertzError] = HertzError) -> None:
     replace_atomically(path, lambda tmp: tmp.write_text(text, encoding="utf-8"), error)
+
+
+def write_bytes_atomically(path: Path, data: bytes, error: type[HertzError] = HertzError) -> None:
+    replace_atomically(path, lambda tmp: tmp.write_bytes(data), error)
+
+
+def remove_part_files(folder: Path) -> None:
+    """A run killed while writing leaves NAME.part files, and a planted NAME.part link
+    would send the next run's write elsewhere: remove them (links themselves, never
+    their targets) before a run writes there."""
+    for path in folder.glob("*.part"):
+        if path.is_symlink() or path.is_file():
+            path.unlink(missing_ok=True)

@@ -132,8 +132,10 @@ def kill_case(token: str, pgid: int | None = None) -> int:
 
 
 def reap_leftover(workdir: Path) -> int:
-    """A killed sweep may have left this case's solver running: kill it. Call it only
-    while holding the folder's lock: a live run holds that lock itself."""
+    """A killed sweep may have left this case's solver running and its NAME.part files
+    half-written: kill the one, remove the others (a planted NAME.part link too, which
+    the next run would write through). Call it only while holding the folder's lock:
+    a live run holds that lock itself."""
     pid_file = workdir / PID_FILE
     try:
         pgid_text, token = pid_file.read_text().split()
@@ -141,6 +143,7 @@ def reap_leftover(workdir: Path) -> int:
     except (OSError, ValueError):
         killed = 0
     pid_file.unlink(missing_ok=True)
+    files.remove_part_files(workdir)
     return killed
 
 
@@ -179,7 +182,10 @@ class CaseLock:
 
     def __enter__(self) -> CaseLock:
         files.refuse_symlink(self.workdir, "work folder")
-        self.workdir.mkdir(parents=True, exist_ok=True)
+        try:
+            self.workdir.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:  # a read-only results folder, or a plain file on the way
+            raise HertzError(f"cannot create the work folder {self.workdir}: {exc.strerror}") from None
         files.refuse_symlink(self.workdir, "work folder")
         path = self.workdir / LOCK_FILE
         try:

@@ -159,6 +159,12 @@ def run_studies(jobs_list: list[Job], results_dir: Path, jobs: int, timeout: flo
     """Sweep several studies under one progress bar, holding their locks throughout.
     With a scheduler (a Dask address, or local:N) the cases run on its workers."""
     say = say or print
+    if scheduler:
+        from driver.dask_backend import parse_local
+        try:
+            parse_local(scheduler)  # a bad address is refused before anything waits on it
+        except ValueError as exc:
+            raise SweepError(str(exc)) from None
     results_dir = layout.user_path(results_dir)
     freefem.check_freefem()
     for job in jobs_list:
