@@ -17,6 +17,7 @@ import io
 import math
 import os
 import re
+import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -90,7 +91,14 @@ class Checked:
     rows: list[list[str]] = field(default_factory=list)
     bad: list[tuple[int, str, str]] = field(default_factory=list)  # line number, reason, line
     replaced: list[list[str]] = field(default_factory=list)  # earlier rows of a case run again
+    unanswered_reruns: list[list[str]] = field(default_factory=list)  # reruns that lost to an earlier answer
     cut_last_line: bool = False
+
+
+def later_wins(earlier: dict, later: dict) -> bool:
+    """Of two rows of one case, the later (its rerun) is kept, unless only the earlier
+    has an answer: a rerun that failed or timed out must not replace a result."""
+    return schema.answered(later) or not schema.answered(earlier)
 
 
 def _numeric_ok(text: str) -> bool:
@@ -174,9 +182,12 @@ def check(path: Path, columns: list[str]) -> Checked:
             result.bad.append((number, reason, text))
             continue
         case_id = fields[index["case_id"]]
-        if case_id in seen:  # a rerun of the case: the later row replaces the earlier one
+        if case_id in seen:  # a rerun of the case: one of the two rows stays
             earlier = rows[seen[case_id]]
             assert earlier is not None
+            if not later_wins(dict(zip(columns, earlier)), dict(zip(columns, fields))):
+                result.unanswered_reruns.append(fields)
+                continue
             result.replaced.append(earlier)
             rows[seen[case_id]] = None
         seen[case_id] = len(rows)
@@ -201,20 +212,86 @@ def frame_of(columns: list[str], rows: list[list[str]]) -> pd.DataFrame:
     return _typed(pd.DataFrame(rows, columns=columns, dtype=object), schema.text_columns())
 
 
-def read(path: Path | str) -> pd.DataFrame:
+# columns a study table always holds as numbers, whatever hertz.edp's options are
+# (read() must not ask hertz.edp: the report runs where FreeFEM is absent)
+_NUMBER_COLUMNS = (*schema.ANSWER_COLUMNS, *schema.ERROR_COLUMNS, "wall_time", "max_rss_mb", "jobs", "exit_code")
+_STUDY_KEYS = ("case_id", "status", "edp_hash")
+
+
+def _reader_problem(record: dict[str, str]) -> str:
+    """Why a line of a study table is no row ("" if it is one), from what the driver
+    itself knows of its columns."""
+    if not record["case_id"]:
+        return "empty case_id"
+    if not record["status"]:
+        return "empty status"
+    for col in _NUMBER_COLUMNS:
+        if col in record and not _numeric_ok(record[col]):
+            return f"{col} is not a number: {record[col]!r:.40}"
+    if record["status"] in schema.ANSWERED:
+        missing = schema.missing_answer(record)
+        if missing:
+            return f"{record['status']} without a finite {missing}"
+    return ""
+
+
+def _say_aside(path: Path, aside: list[tuple[int, str]], say) -> None:
+    for number, reason in aside[:5]:
+        say(f"{path.name}: line {number} set aside: {reason}")
+    if len(aside) > 5:
+        say(f"{path.name}: ... and {len(aside) - 5} more line(s) set aside")
+
+
+def read(path: Path | str, say=None) -> pd.DataFrame:
     """A table for reading (charts, report, tests), without asking hertz.edp anything:
     the driver's text columns stay text, every other column that holds only numbers
-    becomes numbers, the rest (words) stays text."""
+    becomes numbers, the rest (words) stays text.
+
+    A line that is not a row (too many or too few fields, not UTF-8, in a study table
+    also an empty case_id or status, a word where the driver writes a number) is set
+    aside with one line naming it (say, stderr by default), and the rest is read. A
+    study table keeps one row per case, as prepare() would: a rerun's row unless only
+    the earlier one has an answer (an interrupted --force leaves both in the file)."""
     path = Path(path)
-    refuse_symlink(path)
-    if not path.exists() or path.stat().st_size == 0:
+    say = say or (lambda message: print(message, file=sys.stderr))
+    raw = _raw(path)
+    lines = raw.split(b"\n")
+    if lines and lines[-1] == b"":
+        lines.pop()
+    if not lines:
         return pd.DataFrame()
-    if not path.is_file():
-        raise TableError(f"the table {path} is not a file")
     try:
-        frame = pd.read_csv(path, dtype=str, keep_default_na=False)
-    except (OSError, ValueError, UnicodeDecodeError) as exc:
-        raise TableError(f"cannot read {path}: {str(exc).splitlines()[0][:200]}") from None
+        header = next(csv.reader([lines[0].decode("utf-8")]), [])
+    except (UnicodeDecodeError, csv.Error):
+        raise TableError(f"cannot read {path}: its header is not a CSV line") from None
+    if not header:
+        raise TableError(f"cannot read {path}: no header")
+    study_table = set(_STUDY_KEYS) <= set(header)
+    aside: list[tuple[int, str]] = []
+    records: dict[object, dict[str, str]] = {}  # by case id in a study table, else by line
+    for number, line in enumerate(lines[1:], start=2):
+        if not line.strip():
+            continue
+        try:
+            fields = next(csv.reader([line.rstrip(b"\r").decode("utf-8")]))
+        except (UnicodeDecodeError, csv.Error, StopIteration):
+            aside.append((number, "not a CSV line of UTF-8 text"))
+            continue
+        if len(fields) != len(header):
+            aside.append((number, f"{len(fields)} fields, not {len(header)}"))
+            continue
+        record = dict(zip(header, fields))
+        reason = _reader_problem(record) if study_table else ""
+        if reason:
+            aside.append((number, reason))
+            continue
+        key: object = record["case_id"] if study_table else number
+        if key in records and not later_wins(records[key], record):
+            continue
+        records.pop(key, None)  # the kept row takes its place in file order
+        records[key] = record
+    _say_aside(path, aside, say)
+    frame = pd.DataFrame(list(records.values()), columns=header, dtype=object)
     text = set(schema.DRIVER_TEXT)
     for col in frame.columns:
         if col in text or col == "expect_converged":
@@ -242,6 +319,12 @@ def prepare(path: Path, columns: list[str], current_hash: str) -> tuple[pd.DataF
         write_atomically(target, text)
         return target
 
+    def rows_aside(name: str, rows: list[list[str]]) -> Path:
+        """rows added to the stale table of that name, after the rows it holds already."""
+        target = stale_dir / name
+        old = check(target, columns).rows if target.exists() else []
+        return aside(name, _csv_text(columns, old + rows))
+
     if checked.cut_last_line:
         messages.append(f"{path.name}: dropped a last line cut by an interrupted write")
     if checked.bad:
@@ -253,11 +336,13 @@ def prepare(path: Path, columns: list[str], current_hash: str) -> tuple[pd.DataF
             messages.append(f"{path.name}: ... {len(checked.bad) - 5} more")
         messages.append(f"{path.name}: {len(checked.bad)} bad line(s) moved to {target}")
     if checked.replaced:
-        target = stale_dir / f"{path.stem}-replaced-{stamp}.csv"
-        old = check(target, columns).rows if target.exists() else []
-        aside(target.name, _csv_text(columns, old + checked.replaced))
+        target = rows_aside(f"{path.stem}-replaced-{stamp}.csv", checked.replaced)
         messages.append(f"{path.name}: {len(checked.replaced)} row(s) replaced by a rerun of their case "
                         f"moved to {target}")
+    if checked.unanswered_reruns:
+        target = rows_aside(f"{path.stem}-unanswered-reruns-{stamp}.csv", checked.unanswered_reruns)
+        messages.append(f"{path.name}: {len(checked.unanswered_reruns)} rerun(s) gave no answer and kept their "
+                        f"case's earlier answered row; the reruns are in {target}")
     hash_col = columns.index("edp_hash")
     stale = [r for r in checked.rows if r[hash_col] != current_hash]
     kept = [r for r in checked.rows if r[hash_col] == current_hash]
@@ -266,11 +351,9 @@ def prepare(path: Path, columns: list[str], current_hash: str) -> tuple[pd.DataF
         for r in stale:
             by_hash.setdefault(r[hash_col], []).append(r)
         for h, rows in by_hash.items():
-            target = stale_dir / f"{path.stem}-{h}.csv"
-            old = check(target, columns).rows if target.exists() else []
-            aside(target.name, _csv_text(columns, old + rows))
+            rows_aside(f"{path.stem}-{h}.csv", rows)
         messages.append(f"{path.name}: {len(stale)} row(s) of other solver code moved to {stale_dir}/")
-    if checked.cut_last_line or checked.bad or checked.replaced or stale:
+    if checked.cut_last_line or checked.bad or checked.replaced or checked.unanswered_reruns or stale:
         write_atomically(path, _csv_text(columns, kept))
     return frame_of(columns, kept), messages
 

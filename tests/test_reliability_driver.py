@@ -5,12 +5,14 @@ import os
 import time
 
 import pytest
+from test_studytable import _write_table
 
-from driver import api, files, freefem
+from driver import api, files, freefem, studytable
 from driver.cases import Case
 from driver.dask_backend import _write_file
 from driver.errors import HertzError, SweepError
 from driver.run import run_case
+from driver.sweeps import sweep
 
 from conftest import hertz, one_error_line
 
@@ -59,6 +61,41 @@ def test_a_run_removes_part_files_and_writes_through_no_planted_link(tmp_path):
     assert not list(workdir.glob("*.part"))
 
 
+# -- one row per case ------------------------------------------------------------------------
+
+def test_a_reader_sees_one_row_per_case_while_a_forced_rerun_is_cut_short(tmp_path):
+    # an interrupted --force leaves both rows of a case in the file until the next sweep
+    path = tmp_path / "t.csv"
+    _write_table(path, [{"case_id": "a"}, {"case_id": "b"}, {"case_id": "c"},
+                  {"case_id": "a", "p0_fe": 2.0}, {"case_id": "b", "status": "timeout", "p0_fe": ""}])
+    frame = studytable.read(path)
+    assert sorted(frame["case_id"]) == ["a", "b", "c"]
+    by_id = frame.set_index("case_id")
+    assert by_id.loc["a", "p0_fe"] == 2.0  # the rerun's answer
+    assert by_id.loc["b", "status"] == "converged"  # a rerun without an answer does not hide one
+
+
+def test_a_forced_rerun_that_fails_keeps_the_answered_row_and_shows_the_failure(tmp_path):
+    first = sweep("t", [TINY], tmp_path, jobs=1, timeout=120)
+    assert first.table["status"].iloc[0] == "inaccurate"
+    forced = sweep("t", [TINY], tmp_path, jobs=1, timeout=0.01, force=True)
+    assert forced.ran == 1
+    assert list(forced.table["status"]) == ["inaccurate"]
+    assert list(studytable.read(tmp_path / "t.csv")["status"]) == ["inaccurate"]
+    rerun = studytable.read(next((tmp_path / "stale").glob("t-unanswered-reruns-*.csv")))
+    assert list(rerun["status"]) == ["timeout"]
+
+
+def test_prepare_keeps_the_answered_row_against_a_later_failure_and_says_so(tmp_path):
+    path = tmp_path / "t.csv"
+    columns = _write_table(path, [{"case_id": "a"}, {"case_id": "a", "status": "failed", "p0_fe": ""},
+                            {"case_id": "b", "status": "failed", "p0_fe": ""}, {"case_id": "b"}])
+    frame, messages = studytable.prepare(path, columns, freefem.edp_hash())
+    assert sorted(zip(frame["case_id"], frame["status"])) == [("a", "converged"), ("b", "converged")]
+    assert any("1 rerun(s) gave no answer" in m for m in messages), messages
+    assert studytable.check(path, columns).unanswered_reruns == []  # the table itself is repaired
+
+
 # -- one line, not a traceback ---------------------------------------------------------------
 
 @pytest.mark.parametrize("where", ["plain file", "under a plain file", "cannot be created"])
@@ -91,3 +128,35 @@ def test_a_scheduler_address_no_scheduler_can_have_is_refused_at_once(tmp_path, 
         api.sweep("t", cases=[{"n": 8}], results=tmp_path / "results", scheduler=address)
     assert time.monotonic() - start < 10
     assert not (tmp_path / "results" / "t.csv").exists()
+
+
+# -- rows a reader cannot use are set aside, by line -----------------------------------------
+
+def test_broken_rows_are_set_aside_by_line_and_the_rest_is_read(tmp_path):
+    path = tmp_path / "t.csv"
+    columns = _write_table(path, [{"case_id": "a", "wall_time": 2.5}, {"case_id": "b"}])
+    good = path.read_text().splitlines()[1]
+    with open(path, "a") as f:
+        f.write(good.replace(",a,", ",extra,", 1) + ",one too many\n")   # line 4
+        f.write(",".join(good.split(",")[:7]) + "\n")                    # line 5: truncated
+        f.write("\x00\x01garbage" + "," * (len(columns) - 1) + "\n")     # line 6: empty case_id etc.
+        f.write(good.replace(",a,", ",words,", 1).replace(",2.5,", ",lots,", 1) + "\n")  # line 7
+    said = []
+    frame = studytable.read(path, say=said.append)
+    assert sorted(frame["case_id"]) == ["a", "b"]
+    assert frame["wall_time"].dtype.kind == "f"  # a garbage word does not turn the numbers into text
+    text = "\n".join(said)
+    for expect in ("line 4 set aside", f"{len(columns) + 1} fields", "line 5 set aside", "line 6 set aside",
+                   "line 7 set aside"):
+        assert expect in text, (expect, text)
+    assert len(said) == 4
+
+
+def test_a_cut_last_line_is_set_aside_not_read_as_a_short_row(tmp_path):
+    path = tmp_path / "t.csv"
+    _write_table(path, [{"case_id": "a"}])
+    with open(path, "a") as f:
+        f.write("t,b,half")
+    said = []
+    assert list(studytable.read(path, say=said.append)["case_id"]) == ["a"]
+    assert said and "line 3 set aside" in said[0]
