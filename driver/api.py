@@ -15,6 +15,7 @@ with its status and error.
 from __future__ import annotations
 
 import math
+import os
 import shutil
 import sys
 from collections.abc import Iterable, Mapping
@@ -67,6 +68,13 @@ class Result:
 def _check_timeout(timeout: float, prefix: str = "") -> None:
     if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or not 0 < timeout <= MAX_TIMEOUT:
         raise OptionError(f"{prefix}timeout must be a number of seconds in (0, {MAX_TIMEOUT:g}], got {timeout!r}")
+
+
+def _folder(value: object, label: str) -> Path:
+    """A folder argument as an absolute path; OptionError for anything that is not a path."""
+    if not isinstance(value, (str, os.PathLike)) or not str(value):
+        raise OptionError(f"{label} must be a folder (a str or a Path), got {value!r}")
+    return layout.user_path(Path(value))
 
 
 def _missing_folders(path: Path) -> list[Path]:
@@ -122,6 +130,7 @@ def solve_case(options: Mapping[str, object], timeout: float = DEFAULT_TIMEOUT,
                results: str | Path = layout.DEFAULT_RESULTS, prefix: str = "") -> Result:
     """solve() with the option names shown as the caller typed them (prefix "--" for hertz run)."""
     _check_timeout(timeout, prefix)
+    _folder(results, f"{prefix}results")  # before anything runs
     table = freefem.options()
     case_values: dict[str, object] = {}
     paths: dict[str, Path] = {}
@@ -139,7 +148,7 @@ def solve_case(options: Mapping[str, object], timeout: float = DEFAULT_TIMEOUT,
         _check_out(paths["out"], prefix)
         row, files = _run_single(case, paths["out"], timeout, extra, unique=False)
     else:
-        single = layout.work_root(layout.user_path(results), layout.SINGLE)
+        single = layout.work_root(_folder(results, f"{prefix}results"), layout.SINGLE)
         row, files = _run_single(case, single / case.case_id, timeout, extra, unique=True)
     if rejected(row):
         raise RejectedError(str(row["error"]))
@@ -170,9 +179,12 @@ def sweep(study: str | Path, *, cases: Iterable[Mapping[str, object]] | None = N
     the table are not run again unless force (or retry_failed for failed and
     timed-out ones). scheduler: a Dask address or local:N."""
     from driver import sweeps  # the sweep machinery only when a sweep is asked for
+    from driver.studies import case_of
+    results_dir = _folder(results, "results")
     if cases is not None:
-        job = sweeps.Job(str(study), [Case.of(**freefem.parse_options(dict(c))).labelled(str(study))
-                                      for c in cases])
+        if isinstance(cases, (str, bytes, Mapping)) or not isinstance(cases, Iterable):
+            raise OptionError(f"cases must be a list of option dicts, got {type(cases).__name__} {cases!r:.80}")
+        job = sweeps.Job(str(study), [case_of(c, str(study), f"cases[{k}]") for k, c in enumerate(cases)])
     elif isinstance(study, Path) or str(study).endswith((".toml", ".json")):
         job = sweeps.jobs_from(spec=layout.user_path(study), yes=yes)[0]
     else:
@@ -180,7 +192,7 @@ def sweep(study: str | Path, *, cases: Iterable[Mapping[str, object]] | None = N
     _check_timeout(timeout)
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise OptionError(f"jobs must be a positive integer, got {jobs!r}")
-    outcome = sweeps.run_studies([job], layout.user_path(results), jobs or sweeps.cores(), timeout, force,
+    outcome = sweeps.run_studies([job], results_dir, jobs or sweeps.cores(), timeout, force,
                                  retry_failed, say=lambda message: print(message, file=sys.stderr),
                                  scheduler=scheduler)[0]
     return outcome.table.reset_index(drop=True)

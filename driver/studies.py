@@ -13,7 +13,7 @@ import itertools
 import json
 import math
 import tomllib
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -365,14 +365,56 @@ def _unique_keys(pairs: list[tuple[str, object]]) -> dict:
     return seen
 
 
+MAX_SPEC_BYTES = 1 << 20  # a grid of options fits in a few kB; /dev/zero never ends
+
+
+def _spec_text(path: Path) -> str:
+    try:
+        with open(path, "rb") as handle:
+            data = handle.read(MAX_SPEC_BYTES + 1)
+    except OSError as exc:
+        raise SpecError(f"spec {path}: cannot read: {exc.strerror}") from None
+    if len(data) > MAX_SPEC_BYTES:
+        raise SpecError(f"spec {path}: larger than {MAX_SPEC_BYTES >> 20} MB; a spec is a small TOML or JSON file")
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise SpecError(f"spec {path}: not UTF-8 text") from None
+
+
+def not_in_a_sweep(name: str, value: object) -> str:
+    """Why an option cannot be part of a sweep's case ("" if it can): a case that sets it
+    could only fail, or would write outside its own folder."""
+    if name == "out" or name in freefem.RUN_ONLY:
+        return f"{name} is not a case option: the sweep decides where each case runs and what it does"
+    if name == "profile":
+        return "profile cannot be given to a sweep's case (its path is not part of the case)"
+    if name == "shape" and value == "table":
+        return "shape = 'table' needs -profile, which a sweep's case cannot give"
+    if name == "vtk" and (not isinstance(value, str) or "/" in value or value in ("", ".", "..")):
+        return f"vtk must be a file name, written in the case's own folder, got {value!r}"
+    return ""
+
+
+def case_of(values: object, study: str, label: str) -> Case:
+    """One case of a user's sweep from its option dict; OptionError naming the first bad key."""
+    if not isinstance(values, Mapping):
+        raise OptionError(f"{label} must be a dict of options, got {type(values).__name__} {values!r:.80}")
+    for name, value in values.items():
+        why = not_in_a_sweep(str(name), value)
+        if why:
+            raise OptionError(f"{label}: {why}")
+    return Case.of(**freefem.parse_options(dict(values))).labelled(study)
+
+
 def load_spec(path: Path) -> Spec:
     """A grid from TOML or JSON: name = "...", [base] fixed values, [grid] lists of values.
     Every key is an option of hertz.edp's table, checked against its kind and range."""
+    text = _spec_text(path)
     try:
-        text = path.read_text()
         data = (json.loads(text, object_pairs_hook=_unique_keys) if path.suffix == ".json"
                 else tomllib.loads(text))  # TOML itself refuses a repeated key
-    except (OSError, ValueError, RecursionError) as exc:
+    except (ValueError, RecursionError) as exc:
         raise SpecError(f"spec {path}: cannot read: {exc}") from None
     if not isinstance(data, dict):
         raise SpecError(f"spec {path}: the top level must be a table (name, base, grid)")
@@ -394,6 +436,8 @@ def load_spec(path: Path) -> Spec:
     for key, values in _table(path, data, "grid").items():
         if not isinstance(values, list) or not values:
             raise SpecError(f"spec {path}: grid.{key} must be a non-empty list")
+        if key in base:  # one of the two would be dropped without a word
+            raise SpecError(f"spec {path}: '{key}' is set in both [base] and [grid]; keep one")
         axes[key] = [_value(path, options, key, v) for v in values]
     if not axes:
         raise SpecError(f"spec {path}: [grid] must list at least one parameter")
@@ -408,8 +452,11 @@ def _table(path: Path, data: dict, key: str) -> dict:
 
 
 def _value(path: Path, options: dict[str, freefem.Option], key: str, value) -> Value:
-    if key not in options:
+    if key not in options:  # out, vtk, profile and check among them: a case never carries them
         raise SpecError(f"spec {path}: unknown parameter '{key}'; known: {', '.join(options)}")
+    why = not_in_a_sweep(key, value)
+    if why:
+        raise SpecError(f"spec {path}: {why}")
     try:
         return options[key].parse(value, key)
     except OptionError as exc:

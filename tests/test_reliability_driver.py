@@ -10,8 +10,9 @@ from test_studytable import _write_table
 from driver import api, files, freefem, studytable
 from driver.cases import Case
 from driver.dask_backend import _write_file
-from driver.errors import HertzError, SweepError
+from driver.errors import HertzError, OptionError, SpecError, SweepError
 from driver.run import run_case
+from driver.studies import load_spec
 from driver.sweeps import sweep
 
 from conftest import hertz, one_error_line
@@ -98,6 +99,32 @@ def test_prepare_keeps_the_answered_row_against_a_later_failure_and_says_so(tmp_
 
 # -- one line, not a traceback ---------------------------------------------------------------
 
+def test_an_endless_spec_file_is_one_line_at_once(tmp_path):
+    start = time.monotonic()
+    line = one_error_line(hertz("sweep", "--spec", "/dev/zero", cwd=tmp_path))
+    assert "larger than" in line and time.monotonic() - start < 10
+
+
+@pytest.mark.parametrize("cases, message", [("abc", "cases must be a list of option dicts"),
+                                            ({"n": 8}, "cases must be a list of option dicts"),
+                                            (5, "cases must be a list of option dicts"),
+                                            ([1], r"cases\[0\] must be a dict of options"),
+                                            ([{"n": 8}, "n"], r"cases\[1\] must be a dict of options")])
+def test_cases_that_are_not_option_dicts_are_the_packages_error(tmp_path, cases, message):
+    with pytest.raises(OptionError, match=message):
+        api.sweep("x", cases=cases, results=tmp_path)
+    assert not list(tmp_path.iterdir())
+
+
+@pytest.mark.parametrize("results", [5, None, 1.5, ""])
+def test_a_results_folder_that_is_no_path_is_the_packages_error(tmp_path, monkeypatch, results):
+    monkeypatch.chdir(tmp_path)  # were "" taken for the working folder, a run would land here
+    with pytest.raises(OptionError, match="results must be a folder"):
+        api.solve(n=8, results=results)
+    with pytest.raises(OptionError, match="results must be a folder"):
+        api.sweep("x", cases=[{"n": 8}], results=results)
+
+
 @pytest.mark.parametrize("where", ["plain file", "under a plain file", "cannot be created"])
 def test_a_results_folder_that_cannot_hold_a_run_is_one_line(tmp_path, where):
     plain = tmp_path / "plain"
@@ -111,6 +138,40 @@ def test_a_results_folder_that_cannot_hold_a_run_is_one_line(tmp_path, where):
     assert "cannot create the work folder" in one_error_line(
         hertz("run", "--n", "8", "--results", str(results), cwd=tmp_path))
     assert plain.read_text() == "not a folder\n"
+
+
+# -- spec keys and cases that could only fail are refused up front -----------------------------
+
+@pytest.mark.parametrize("text, message", [
+    ('name = "x"\n[grid]\nout = ["/tmp"]', "unknown parameter 'out'"),
+    ('name = "x"\n[grid]\ncheck = [1]', "unknown parameter 'check'"),
+    ('name = "x"\n[grid]\nvtk = ["f.vtu"]', "unknown parameter 'vtk'"),
+    ('name = "x"\n[base]\nshape = "table"\n[grid]\nn = [8]', "shape = 'table' needs -profile"),
+    ('name = "x"\n[grid]\nshape = ["sphere", "table"]', "shape = 'table' needs -profile"),
+    ('name = "x"\n[base]\nn = 8\n[grid]\nn = [16, 32]', "'n' is set in both \\[base\\] and \\[grid\\]"),
+])
+def test_spec_keys_that_can_only_fail_are_refused_with_one_line(tmp_path, text, message):
+    spec = tmp_path / "s.toml"
+    spec.write_text(text)
+    with pytest.raises(SpecError, match=message) as caught:
+        load_spec(spec)
+    assert "\n" not in str(caught.value)
+    assert one_error_line(hertz("sweep", "--spec", "s.toml", cwd=tmp_path))
+    assert not (tmp_path / "results").exists()
+
+
+@pytest.mark.parametrize("case, message", [
+    ({"out": "elsewhere"}, "out is not a case option"),
+    ({"check": 1}, "check is not a case option"),
+    ({"profile": "p.csv"}, "profile cannot be given"),
+    ({"shape": "table"}, "shape = 'table' needs -profile"),
+    ({"vtk": "/abs/evil.vtu"}, "vtk must be a file name"),
+    ({"vtk": "../../evil.vtu"}, "vtk must be a file name"),
+])
+def test_case_options_that_can_only_fail_or_escape_are_refused(tmp_path, case, message):
+    with pytest.raises(OptionError, match=message):
+        api.sweep("x", cases=[{"n": 8}, case], results=tmp_path)
+    assert not list(tmp_path.iterdir())
 
 
 # -- scheduler addresses ---------------------------------------------------------------------
