@@ -269,6 +269,7 @@ def read(path: Path | str, say=None) -> pd.DataFrame:
     study_table = set(_STUDY_KEYS) <= set(header)
     aside: list[tuple[int, str]] = []
     records: dict[object, dict[str, str]] = {}  # by case id in a study table, else by line
+    twice = 0
     for number, line in enumerate(lines[1:], start=2):
         if not line.strip():
             continue
@@ -286,11 +287,16 @@ def read(path: Path | str, say=None) -> pd.DataFrame:
             aside.append((number, reason))
             continue
         key: object = record["case_id"] if study_table else number
-        if key in records and not later_wins(records[key], record):
-            continue
+        if key in records:
+            twice += 1
+            if not later_wins(records[key], record):
+                continue
         records.pop(key, None)  # the kept row takes its place in file order
         records[key] = record
     _say_aside(path, aside, say)
+    if twice:
+        say(f"{path.name}: {twice} case(s) found again (reruns the next sweep tidies away); one row of "
+            "each is read, the rerun's unless only the earlier row has an answer")
     frame = pd.DataFrame(list(records.values()), columns=header, dtype=object)
     text = set(schema.DRIVER_TEXT)
     for col in frame.columns:

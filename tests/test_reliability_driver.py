@@ -3,6 +3,7 @@ case whatever a rerun did, and one clear line (never a traceback) for every bad 
 address or row."""
 import os
 import time
+from pathlib import Path
 
 import pytest
 from test_studytable import _write_table
@@ -69,8 +70,10 @@ def test_a_reader_sees_one_row_per_case_while_a_forced_rerun_is_cut_short(tmp_pa
     path = tmp_path / "t.csv"
     _write_table(path, [{"case_id": "a"}, {"case_id": "b"}, {"case_id": "c"},
                   {"case_id": "a", "p0_fe": 2.0}, {"case_id": "b", "status": "timeout", "p0_fe": ""}])
-    frame = studytable.read(path)
+    said = []
+    frame = studytable.read(path, say=said.append)
     assert sorted(frame["case_id"]) == ["a", "b", "c"]
+    assert len(said) == 1 and "2 case(s) found again" in said[0]
     by_id = frame.set_index("case_id")
     assert by_id.loc["a", "p0_fe"] == 2.0  # the rerun's answer
     assert by_id.loc["b", "status"] == "converged"  # a rerun without an answer does not hide one
@@ -138,6 +141,14 @@ def test_a_results_folder_that_cannot_hold_a_run_is_one_line(tmp_path, where):
     assert "cannot create the work folder" in one_error_line(
         hertz("run", "--n", "8", "--results", str(results), cwd=tmp_path))
     assert plain.read_text() == "not a folder\n"
+
+
+def test_a_table_that_cannot_be_written_is_one_line(tmp_path):
+    # (/proc takes no new file, even from root); the temporary file's own cleanup must not
+    # raise over the error that names the table
+    with pytest.raises(HertzError, match=r"cannot write /proc/hertz\.csv") as caught:
+        files.write_text_atomically(Path("/proc/hertz.csv"), "a\n")
+    assert "\n" not in str(caught.value)
 
 
 # -- spec keys and cases that could only fail are refused up front -----------------------------
