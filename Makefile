@@ -2,7 +2,7 @@
 PYTHON ?= python3
 JOBS ?= $(shell nproc)
 
-.PHONY: all help setup run sweep rerun sweep-quick report bench test test-fast lint mutate clean
+.PHONY: all help setup run sweep rerun sweep-quick report bench test test-fast audit lint mutate clean
 
 all: setup sweep                  ## set up, run every study, write the report
 
@@ -43,6 +43,9 @@ test:                             ## the whole test suite, as CI runs it (about 
 
 test-fast:                        ## the quick tier for the edit-run loop: every test not marked slow
 	$(PYTHON) -m pytest -q $(TEST_WORKERS) -m "not slow" tests
+
+audit:                            ## the promise against the truth: 500 random 2D scenes and 10 in 3D (results/local/audit.csv)
+	$(PYTHON) tests/audit.py --jobs $(JOBS)
 
 lint:                             ## FreeFEM compiles (every branch: dimension, order, formulation), ruff and mypy are clean
 	cd edp && for branch in "" "-DDIM=2 -DORDER=1" "-DDIM=2 -DMIXED=1" "-DDIM=2 -DMIXED=2" "-DDIM=3" "-DDIM=3 -DORDER=1" "-DDIM=3 -DMIXED=1" "-DDIM=3 -DMIXED=2"; do \
