@@ -74,3 +74,15 @@ def test_uzawa_at_a_stiff_penalty_ends_with_a_status_not_a_crash(solve, args):
     run = solve("-method", "uzawa", *args)
     assert run.exit_code in (0, 3, 5), run.output
     assert run.summary["status"] in ("converged", "stalled", "maxiter", "roundoff", "inaccurate"), run.output
+
+
+def test_p1_under_load_keeps_the_promise_on_the_audits_silent_scene(solve):
+    # tests/audit.py, seed 47: exit 0 at p0 +1.3% read 0.40% (P1's p0 moves erratically with n)
+    from hertz_reference import sphere_depth, sphere_from_load
+    E1, NU1, R1, P1 = 2327.5598408812775, 0.24810464569463708, 1.5127297629833842, 0.642297340268881
+    run = solve("-E", str(E1), "-nu", str(NU1), "-method", "newton", "-order", "1", "-n", "22",
+                "-R", str(R1), "-P", str(P1))
+    h, s = sphere_from_load(E1, NU1, R1, P1), run.summary
+    truth = max(rel(s["p0_fe"], h.p0), rel(s["a_fe"], h.a), rel(s["d_fe"], sphere_depth(E1, NU1, R1, P1)))
+    check_promise(run, truth)
+    assert s["est_err_p0"] >= 0.5 * rel(s["p0_fe"], h.p0)
