@@ -14,7 +14,7 @@ import sys
 from driver import __version__
 from driver.commands import NAMES
 from driver.commands.common import Parser
-from driver.errors import HertzError
+from driver.errors import HertzError, error_line
 
 INTERRUPTED = 130  # 128 + SIGINT, as a shell reports it
 
@@ -31,6 +31,7 @@ def build_parser(argv: list[str]) -> Parser:
         if name == chosen:
             module.add_arguments(command)
             command.set_defaults(handle=module.handle)
+            parser.chosen = command
     return parser
 
 
@@ -40,7 +41,7 @@ def main(argv: list[str] | None = None) -> int:
         args = build_parser(argv).parse_args(argv)
         return args.handle(args)
     except HertzError as exc:
-        print(f"error: {exc}", file=sys.stderr)
+        print(error_line(str(exc)), file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("interrupted: finished cases are kept; run the same command to resume", file=sys.stderr)

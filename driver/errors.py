@@ -6,6 +6,13 @@ line and exits with code 2.
 """
 from __future__ import annotations
 
+SOLVER_ERROR = "hertz.edp: error:"  # hertz.edp's own error lines start so, and are shown as they are
+
+
+def error_line(message: str) -> str:
+    """The one line an error is shown as: `hertz: error: ...`, or the solver's own line."""
+    return message if message.startswith(SOLVER_ERROR) else f"hertz: error: {message}"
+
 
 class HertzError(Exception):
     """An error the user can act on; its message is one line that says what and why."""

@@ -7,6 +7,8 @@ driver/processes.py's. Importing this module changes nothing.
 """
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import csv
 import math
 import os
@@ -16,11 +18,12 @@ import subprocess
 import threading
 import time
 import uuid
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 from driver import freefem, schema
 from driver.cases import Case
-from driver.errors import HertzError
+from driver.errors import SOLVER_ERROR, HertzError
 from driver.processes import MARKER, PID_FILE, RUNNING, CaseLock, kill_case, launcher, reap_adopted, reap_leftover
 
 LOG_FILE = "freefem.log"
@@ -28,6 +31,53 @@ LOG_FILE = "freefem.log"
 # pointed there): removed before a run, so no earlier run's file passes for this one's
 OUTPUT_SUFFIXES = (".csv", ".vtu")
 MAX_TIMEOUT = 1e6  # seconds (11.6 days); threading's timers overflow not far above 1e9
+SOLVER_WARNING = "hertz.edp: warning:"
+
+# who is shown the solver's output as it comes (hertz run -v); set by the caller around
+# one run, in its own thread: a sweep's worker threads never see it
+_ECHO: contextvars.ContextVar[Callable[[str], None] | None] = contextvars.ContextVar("echo", default=None)
+
+
+@contextlib.contextmanager
+def echoing(say: Callable[[str], None]) -> Iterator[None]:
+    """Runs started inside show each line of their log to say() as the solver writes it."""
+    token = _ECHO.set(say)
+    try:
+        yield
+    finally:
+        _ECHO.reset(token)
+
+
+def _follow(log_path: Path, say: Callable[[str], None], done: threading.Event) -> threading.Thread:
+    """A thread that passes the log's lines to say() as they are written, until done and read."""
+    def follow() -> None:
+        with open(log_path, "rb") as log:
+            pending = b""
+            while True:
+                finished = done.is_set()  # read once more after the solver exits: its last lines
+                chunk = log.read()
+                pending += chunk
+                *lines, pending = pending.split(b"\n")
+                for line in lines:
+                    say(line.decode(errors="replace"))
+                if finished and not chunk:
+                    break
+                if not chunk:
+                    time.sleep(0.05)
+            if pending:
+                say(pending.decode(errors="replace"))
+    thread = threading.Thread(target=follow, daemon=True)
+    thread.start()
+    return thread
+
+
+def solver_warnings(log: Path) -> list[str]:
+    """The warning lines hertz.edp wrote (on its stderr, in the log), in order."""
+    try:
+        text = log.read_text(errors="replace")
+    except OSError:
+        return []
+    return [line.strip() for line in text.splitlines() if line.startswith(SOLVER_WARNING)]
 
 
 def empty_row(case: Case, study: str, columns: list[str]) -> dict:
@@ -117,7 +167,7 @@ def solver_error(log: Path) -> str:
     except OSError:
         return ""
     for line in lines:
-        if line.startswith("hertz.edp: error:"):
+        if line.startswith(SOLVER_ERROR):
             return line[:300]
     for line in lines:
         if line.startswith(("Exec error", "Compile error", "Error line")) or "Error" in line.split(":")[0]:
@@ -205,6 +255,8 @@ def _run(case: Case, workdir: Path, timeout: float, columns: list[str], extra: t
                                     env=env, start_new_session=True)
             RUNNING.cases[token] = proc.pid
     (workdir / PID_FILE).write_text(f"{proc.pid} {token}\n")
+    say, exited = _ECHO.get(), threading.Event()
+    follower = _follow(log_path, say, exited) if say is not None else None
 
     def expire() -> None:
         timed_out.set()
@@ -222,6 +274,9 @@ def _run(case: Case, workdir: Path, timeout: float, columns: list[str], extra: t
         RUNNING.discard(token)
         (workdir / PID_FILE).unlink(missing_ok=True)
         reap_adopted()
+        exited.set()
+        if follower is not None:
+            follower.join(timeout=5)
     out: dict[str, object] = {"exit_code": proc.returncode, "max_rss_mb": usage.ru_maxrss / 1024}
     if timed_out.is_set():
         out.update(status="timeout", error=f"no result after {timeout:g} s")
@@ -241,4 +296,4 @@ def _run(case: Case, workdir: Path, timeout: float, columns: list[str], extra: t
 def rejected(row: dict) -> bool:
     """hertz.edp refused the case's input (its one error line is the row's error)."""
     return (row.get("status") == "failed" and row.get("exit_code") == freefem.exit_code("rejected")
-            and str(row.get("error", "")).startswith("hertz.edp: error:"))
+            and str(row.get("error", "")).startswith(SOLVER_ERROR))

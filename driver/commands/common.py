@@ -1,11 +1,16 @@
-"""What the subcommands share: argument types, and a parser that refuses an option given twice."""
+"""What the subcommands share: argument types, hertz.edp's options as arguments, and a parser
+that refuses an option given twice, suggests the option meant, and says `hertz: error:`."""
 from __future__ import annotations
 
 import argparse
+import difflib
 import math
+import re
 from pathlib import Path
+from typing import Any
 
 from driver import layout
+from driver.errors import error_line
 
 
 class Once(argparse.Action):
@@ -23,14 +28,35 @@ class Once(argparse.Action):
 class Parser(argparse.ArgumentParser):
     """argparse with Once for every option that takes a value (subparsers inherit it)."""
 
+    # the subcommand's parser, once build_parser made it: argparse reports a subcommand's
+    # unknown options from the top parser, which alone does not know them
+    chosen: argparse.ArgumentParser | None = None
+
     def add_argument(self, *args, **kwargs):
         if args and args[0].startswith("-") and "action" not in kwargs:
             kwargs["action"] = Once
         return super().add_argument(*args, **kwargs)
 
     def error(self, message: str):
-        """One line naming the problem (argparse would print the whole usage first)."""
-        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+        """One line naming the problem (argparse would print the whole usage first), with the
+        option or command meant when a typo is close to one (argparse suggests only from 3.14)."""
+        where = (self.chosen or self).prog
+        self.exit(2, error_line(f"{message}{self._suggestion(message)} (see {where} --help)") + "\n")
+
+    def _suggestion(self, message: str) -> str:
+        parsers = [p for p in (self, self.chosen) if p is not None]
+        if message.startswith("unrecognized arguments:"):
+            known = [name for p in parsers for name in p._option_string_actions if name.startswith("--")]
+            typed = [word.split("=", 1)[0] for word in message.split(":", 1)[1].split() if word.startswith("--")]
+        else:
+            match = re.search(r"argument COMMAND: invalid choice: '([^']*)'", message)
+            from driver.commands import NAMES
+            known, typed = list(NAMES), [match.group(1)] if match else []
+        for word in typed:
+            close = difflib.get_close_matches(word, known, n=1)
+            if close:
+                return f"; did you mean {close[0]}?"
+        return ""
 
 
 def positive(kind, upper: float = math.inf, unit: str = ""):
@@ -67,3 +93,32 @@ def shown(path: Path) -> str:
         return str(path.relative_to(Path.cwd()))
     except ValueError:
         return str(path)
+
+
+def add_solver_options(parser: argparse.ArgumentParser, taken: tuple[str, ...] = ()) -> None:
+    """Every option of hertz.edp's table as --name (dest opt_name), but RUN_ONLY ones and those
+    taken. A 0/1 option is also a switch: a bare --cont is --cont 1."""
+    from driver import freefem
+    for option in freefem.options().values():
+        if option.name in freefem.RUN_ONLY or option.name in taken:
+            continue
+        switch = option.kind == "int" and option.range == "integer in [0, 1]"
+        bare: dict[str, Any] = {"nargs": "?", "const": "1"} if switch else {}
+        parser.add_argument(f"--{option.name}", metavar=option.kind.upper(), dest=f"opt_{option.name}",
+                            help=f"{option.help} (default {option.default}; {option.range}"
+                                 + (f"; a bare --{option.name} is 1)" if switch else ")"),
+                            **bare)
+
+
+def solver_values(args: argparse.Namespace) -> dict[str, str]:
+    """The hertz.edp options given on the command line, by name, as typed."""
+    return {name.removeprefix("opt_"): value for name, value in vars(args).items()
+            if name.startswith("opt_") and value is not None}
+
+
+def add_talk(parser: argparse.ArgumentParser) -> None:
+    talk = parser.add_mutually_exclusive_group()
+    talk.add_argument("-q", "--quiet", action="store_true",
+                      help="print only the row and errors: no solver warnings, no files line")
+    talk.add_argument("-v", "--verbose", action="store_true",
+                      help="show the solver's output on stderr as it runs")

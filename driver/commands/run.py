@@ -2,12 +2,13 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import sys
 
-from driver import freefem
-from driver.commands.common import add_results, add_timeout, shown
+from driver.commands.common import add_results, add_solver_options, add_talk, add_timeout, shown, solver_values
+from driver.errors import error_line
 
 HELP = "run one case; print its row (every hertz.edp option is --name)"
 
@@ -16,19 +17,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print the row as JSON")
     add_timeout(parser, "seconds before the case is stopped")
     add_results(parser)
+    add_talk(parser)
     # the solver's options come from hertz.edp's own table, whatever it holds today
-    for option in freefem.options().values():
-        if option.name in freefem.RUN_ONLY:
-            continue
-        parser.add_argument(f"--{option.name}", metavar=option.kind.upper(), dest=f"opt_{option.name}",
-                            help=f"{option.help} (default {option.default}; {option.range})")
+    add_solver_options(parser)
+
+
+def say(line: str) -> None:
+    print(line, file=sys.stderr, flush=True)
 
 
 def handle(args: argparse.Namespace) -> int:
     from driver.api import solve_case
-    options = {name: getattr(args, f"opt_{name}") for name in freefem.options()
-               if getattr(args, f"opt_{name}", None) is not None}
-    result = solve_case(options, args.timeout, args.results, prefix="--")
+    from driver.run import LOG_FILE, echoing, solver_warnings
+    with echoing(say) if args.verbose else contextlib.nullcontext():
+        result = solve_case(solver_values(args), args.timeout, args.results, prefix="--")
     clean = {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in result.row.items()}
     if args.json:
         print(json.dumps(clean, indent=1, default=str))
@@ -37,7 +39,14 @@ def handle(args: argparse.Namespace) -> int:
         for key, value in clean.items():
             text = repr(value) if isinstance(value, float) else ("" if value is None else str(value))
             print(f"{key:{width}s}  {text}")
-    print(f"files: {shown(result.files)}", file=sys.stderr)
+    sys.stdout.flush()
+    if not args.quiet:
+        if not args.verbose:  # -v showed them as they came
+            for warning in solver_warnings(result.files / LOG_FILE):
+                say(warning)
+        say(f"files: {shown(result.files)}")
     if result.status == "failed" and result.error:
-        print(f"error: {result.error}", file=sys.stderr)
+        say(error_line(result.error))
     return result.exit_code
+
+

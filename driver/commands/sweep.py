@@ -55,10 +55,10 @@ def handle(args: argparse.Namespace) -> int:
     jobs_list = sweeps.jobs_from(names=names, spec=args.spec, quick=args.quick, yes=args.yes)
     jobs = args.jobs or sweeps.cores()
     if args.scheduler and args.jobs:
-        print(f"warning: --jobs is ignored with --scheduler {args.scheduler}: each worker thread runs "
+        print(f"hertz: warning: --jobs is ignored with --scheduler {args.scheduler}: each worker thread runs "
               "one case at a time", file=sys.stderr)
     elif jobs > sweeps.cores():
-        print(f"warning: --jobs {jobs} is more than the {sweeps.cores()} cores: cases will share cores "
+        print(f"hertz: warning: --jobs {jobs} is more than the {sweeps.cores()} cores: cases will share cores "
               "and their wall_time (column jobs records it) will grow", file=sys.stderr)
     # orphans of this sweep's cases come to this process, which kills and reaps them
     processes.become_subreaper()
@@ -73,7 +73,8 @@ def handle(args: argparse.Namespace) -> int:
     for o in outcomes:
         counts = o.table["status"].value_counts().to_dict() if len(o.table) else {}
         print(f"{o.study}: {len(o.table)} cases ({o.ran} run now) in "
-              f"{shown(layout.study_csv(args.results, o.study))}: {counts}")
+              f"{shown(layout.study_csv(args.results, o.study))}: "
+              + (", ".join(f"{count} {status}" for status, count in counts.items()) or "none"))
     print(f"sweep done in {time.perf_counter() - start:.1f} s")
     bad = sweeps.report_unexpected(outcomes)
     if bad:
