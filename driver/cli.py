@@ -1,4 +1,4 @@
-"""Command line: hertz {run,sweep,report,bench,options,field} --help  (or python -m driver ...).
+"""Command line: hertz {run,curve,sweep,report,bench,options,field} --help  (or python -m driver ...).
 
 Each subcommand is a module of driver.commands with its own arguments and
 handler; this module only assembles them. A subcommand's arguments are built

@@ -367,3 +367,19 @@ def _columns(fingerprint: str) -> tuple[str, ...]:
 def summary_columns() -> list[str]:
     """The columns of summary.csv, in hertz.edp's order."""
     return list(_columns(edp_hash()))
+
+
+def refusal(args: list[str]) -> str:
+    """hertz.edp's own check of a case (-check 1: the options and the scene, nothing solved):
+    "" when it accepts the case, else its error line. It catches the ranges that depend on
+    the scene (-d below R), which the option table cannot."""
+    try:
+        proc = subprocess.run(command([*args, "-check", "1"]), capture_output=True, text=True,
+                              env=freefem_env(), timeout=120, check=False)
+    except (OSError, subprocess.TimeoutExpired) as exc:
+        raise SetupError(f"hertz.edp -check could not run: {exc}") from None
+    if proc.returncode == 0:
+        return ""
+    lines = (proc.stdout + proc.stderr).splitlines()
+    return next((line.strip() for line in lines if line.startswith("hertz.edp: error:")),
+                f"hertz.edp -check refused {' '.join(args)} (exit {proc.returncode})")

@@ -1,3 +1,3 @@
 """The subcommands of `hertz`: each module has HELP, add_arguments(parser) and handle(args) -> int."""
 
-NAMES = ("run", "sweep", "report", "bench", "options", "field")
+NAMES = ("run", "curve", "sweep", "report", "bench", "options", "field")

@@ -116,9 +116,10 @@ def solver_values(args: argparse.Namespace) -> dict[str, str]:
             if name.startswith("opt_") and value is not None}
 
 
-def add_talk(parser: argparse.ArgumentParser) -> None:
+def add_talk(parser: argparse.ArgumentParser, verbose: bool = True) -> None:
     talk = parser.add_mutually_exclusive_group()
     talk.add_argument("-q", "--quiet", action="store_true",
-                      help="print only the row and errors: no solver warnings, no files line")
-    talk.add_argument("-v", "--verbose", action="store_true",
-                      help="show the solver's output on stderr as it runs")
+                      help="print only the results and errors: no solver warnings, no files line")
+    if verbose:
+        talk.add_argument("-v", "--verbose", action="store_true",
+                          help="show the solver's output on stderr as it runs")
