@@ -27,7 +27,7 @@ def replace_atomically(path: Path, write: Callable[[Path], object], error: type[
     folder: Path | None = None
     try:
         folder = Path(tempfile.mkdtemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent))
-        tmp = folder / path.name  # the same suffix: a writer may pick its format by it
+        tmp = folder / f"{path.name}.part"
         write(tmp)
         fd = os.open(tmp, os.O_RDONLY | os.O_NOFOLLOW)
         try:
