@@ -28,7 +28,7 @@ import pandas as pd
 from driver import freefem, layout, schema
 from driver.cases import Case
 from driver.errors import HertzError, OptionError, RejectedError
-from driver.processes import LOCK_FILE, Busy, CaseLock
+from driver.processes import LOCK_FILE, Busy, CaseLock, children_waitable
 from driver.run import LOG_FILE, MAX_TIMEOUT, rejected, run_case
 
 DEFAULT_TIMEOUT = 600.0
@@ -144,12 +144,13 @@ def solve_case(options: Mapping[str, object], timeout: float = DEFAULT_TIMEOUT,
             case_values[name] = value
     case = Case.of(**freefem.parse_options(case_values, prefix))
     extra = tuple(arg for name, path in paths.items() if name != "out" for arg in (f"-{name}", str(path)))
-    if "out" in paths:
-        _check_out(paths["out"], prefix)
-        row, files = _run_single(case, paths["out"], timeout, extra, unique=False)
-    else:
-        single = layout.work_root(_folder(results, f"{prefix}results"), layout.SINGLE)
-        row, files = _run_single(case, single / case.case_id, timeout, extra, unique=True)
+    with children_waitable():
+        if "out" in paths:
+            _check_out(paths["out"], prefix)
+            row, files = _run_single(case, paths["out"], timeout, extra, unique=False)
+        else:
+            single = layout.work_root(_folder(results, f"{prefix}results"), layout.SINGLE)
+            row, files = _run_single(case, single / case.case_id, timeout, extra, unique=True)
     if rejected(row):
         raise RejectedError(str(row["error"]))
     return Result.of(row, files)
@@ -192,7 +193,8 @@ def sweep(study: str | Path, *, cases: Iterable[Mapping[str, object]] | None = N
     _check_timeout(timeout)
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise OptionError(f"jobs must be a positive integer, got {jobs!r}")
-    outcome = sweeps.run_studies([job], results_dir, jobs or sweeps.cores(), timeout, force,
-                                 retry_failed, say=lambda message: print(message, file=sys.stderr),
-                                 scheduler=scheduler)[0]
+    with children_waitable():
+        outcome = sweeps.run_studies([job], results_dir, jobs or sweeps.cores(), timeout, force,
+                                     retry_failed, say=lambda message: print(message, file=sys.stderr),
+                                     scheduler=scheduler)[0]
     return outcome.table.reset_index(drop=True)

@@ -14,6 +14,7 @@ module changes nothing.
 """
 from __future__ import annotations
 
+import contextlib
 import ctypes
 import fcntl
 import os
@@ -21,6 +22,7 @@ import shutil
 import signal
 import threading
 import time
+from collections.abc import Iterator
 from pathlib import Path
 
 from driver import files
@@ -203,6 +205,22 @@ class CaseLock:
     def __exit__(self, *exc) -> None:
         assert self.fd is not None
         os.close(self.fd)
+
+
+@contextlib.contextmanager
+def children_waitable() -> Iterator[None]:
+    """A process that ignores SIGCHLD has its children reaped by the kernel, so waiting
+    for the solver fails (ECHILD) although it ran: restore the default while cases run.
+    Only the main thread may change a handler; elsewhere it is left as it is."""
+    if (threading.current_thread() is not threading.main_thread()
+            or signal.getsignal(signal.SIGCHLD) is not signal.SIG_IGN):
+        yield
+        return
+    signal.signal(signal.SIGCHLD, signal.SIG_DFL)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGCHLD, signal.SIG_IGN)
 
 
 def launcher() -> list[str]:

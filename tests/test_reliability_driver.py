@@ -2,6 +2,7 @@
 case whatever a rerun did, and one clear line (never a traceback) for every bad path, spec,
 address or row."""
 import os
+import signal
 import time
 from pathlib import Path
 
@@ -149,6 +150,19 @@ def test_a_table_that_cannot_be_written_is_one_line(tmp_path):
     with pytest.raises(HertzError, match=r"cannot write /proc/hertz\.csv") as caught:
         files.write_text_atomically(Path("/proc/hertz.csv"), "a\n")
     assert "\n" not in str(caught.value)
+
+
+def test_a_caller_that_ignores_sigchld_still_gets_its_answers(tmp_path):
+    # the kernel reaps the children of such a process, and waiting for the solver failed
+    previous = signal.signal(signal.SIGCHLD, signal.SIG_IGN)
+    try:
+        result = api.solve(n=4, L=50.0, farfield="clamped", results=tmp_path)
+        table = api.sweep("t", cases=[{"n": 4, "L": 50.0, "farfield": "clamped"}], results=tmp_path)
+        assert signal.getsignal(signal.SIGCHLD) is signal.SIG_IGN  # the caller's choice, given back
+    finally:
+        signal.signal(signal.SIGCHLD, previous)
+    assert result.answered, result.error
+    assert list(table["status"]) == ["inaccurate"], list(table["error"])
 
 
 # -- spec keys and cases that could only fail are refused up front -----------------------------
