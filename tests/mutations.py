@@ -306,8 +306,9 @@ MUTATIONS = [
              '        raise error(f"cannot write {path}: {exc.strerror or exc}") from None', "        raise",
              ["tests/test_report.py::test_a_full_disk_is_one_clear_error_and_keeps_the_charts"]),
     Mutation("charts written in place", "driver/charts/common.py",
-             '        files.replace_atomically(path, lambda tmp: fig.savefig(tmp, dpi=110, format="png"), ReportError)',
-             '        fig.savefig(path, dpi=110, format="png")',
+             "        files.replace_atomically(path, lambda tmp: fig.savefig(tmp, dpi=110, format=\"png\", "
+             "metadata=PNG_METADATA),\n                                 ReportError)",
+             '        fig.savefig(path, dpi=110, format="png", metadata=PNG_METADATA)',
              ["tests/test_report.py::test_an_interrupted_chart_leaves_the_old_one_whole"]),
     Mutation("only the four 2D outputs removed before a run", "driver/run.py",
              "        if path.suffix in OUTPUT_SUFFIXES or path.name in (LOG_FILE, PID_FILE):",
