@@ -193,8 +193,7 @@ def sweep(study: str | Path, *, cases: Iterable[Mapping[str, object]] | None = N
     _check_timeout(timeout)
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise OptionError(f"jobs must be a positive integer, got {jobs!r}")
-    with children_waitable():
-        outcome = sweeps.run_studies([job], results_dir, jobs or sweeps.cores(), timeout, force,
-                                     retry_failed, say=lambda message: print(message, file=sys.stderr),
-                                     scheduler=scheduler)[0]
+    outcome = sweeps.run_studies([job], results_dir, jobs or sweeps.cores(), timeout, force,
+                                 retry_failed, say=lambda message: print(message, file=sys.stderr),
+                                 scheduler=scheduler)[0]
     return outcome.table.reset_index(drop=True)

@@ -34,7 +34,7 @@ from driver import files, freefem, layout, studytable
 from driver.cases import Case
 from driver.errors import SweepError, TableError
 from driver.executors import Executor, make_executor
-from driver.processes import RUNNING
+from driver.processes import RUNNING, children_waitable
 from driver.schema import RETRY_STATUSES, study_columns
 from driver.studies import STUDIES, load_spec
 
@@ -175,6 +175,7 @@ def run_studies(jobs_list: list[Job], results_dir: Path, jobs: int, timeout: flo
     columns = study_columns(freefem.summary_columns())
     outcomes = []
     with ExitStack() as locks:
+        locks.enter_context(children_waitable())
         for job in jobs_list:
             locks.enter_context(studytable.StudyLock(layout.study_lock(results_dir, job.study)))
         plans = []

@@ -17,7 +17,7 @@ from driver.run import run_case
 from driver.studies import load_spec
 from driver.sweeps import sweep
 
-from conftest import hertz, one_error_line
+from conftest import cli, hertz, one_error_line
 
 TINY = Case.of(n=4, L=50.0, farfield="clamped")  # ~0.1 s, inaccurate (an answer all the same)
 
@@ -163,6 +163,15 @@ def test_a_caller_that_ignores_sigchld_still_gets_its_answers(tmp_path):
         signal.signal(signal.SIGCHLD, previous)
     assert result.answered, result.error
     assert list(table["status"]) == ["inaccurate"], list(table["error"])
+
+
+def test_a_sweep_started_with_sigchld_ignored_gets_its_answers(tmp_path):
+    (tmp_path / "s.toml").write_text('name = "t"\n[base]\nL = 50.0\nfarfield = "clamped"\n[grid]\nn = [4]\n')
+    # an ignored signal stays ignored across exec: the shell's choice reaches hertz
+    proc = cli("sweep", "--spec", "s.toml", "--no-progress", cwd=tmp_path,
+               preexec_fn=lambda: signal.signal(signal.SIGCHLD, signal.SIG_IGN))
+    assert "Traceback" not in proc.stderr, proc.stderr
+    assert list(studytable.read(tmp_path / "results" / "t.csv")["status"]) == ["inaccurate"]
 
 
 # -- spec keys and cases that could only fail are refused up front -----------------------------
