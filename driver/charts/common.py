@@ -23,7 +23,10 @@ from driver.schema import max_error
 Tables = dict[str, pd.DataFrame]
 
 ERRORS = {"err_p0": "p0", "err_F": "F", "err_a": "a"}
-QUANTITY_COLORS = ("#1565c0", "#c62828", "#2e7d32")
+# p0, F, a: blue, vermillion and reddish purple from Okabe and Ito's palette, apart under every
+# colour-vision deficiency (red against green is the pair deuteranopes lose); not black, which
+# the charts keep for their references (Hertz, Sneddon)
+QUANTITY_COLORS = ("#0072B2", "#D55E00", "#CC79A7")
 # Okabe and Ito's colour-blind-safe palette (distinct hues and lightness), and a
 # hatch on every status but converged, so no pair depends on telling hues apart
 STATUS_COLORS = {"converged": "#009E73", "inaccurate": "#F0E442", "roundoff": "#56B4E9",
@@ -36,8 +39,9 @@ METHOD_STYLE = {("newton", 2): ("#1565c0", "o"), ("newton", 1): ("#64b5f6", "s")
                 ("lagrange", 2): ("#2e7d32", "D"), ("lagrange", 1): ("#a5d6a7", "d"),
                 ("uzawa", 2): ("#6a1b9a", "P"), ("uzawa", 1): ("#ce93d8", "p"),
                 ("fixedpoint", 2): ("#c62828", "^"), ("fixedpoint", 1): ("#ef9a9a", "v")}
-SHAPE_COLORS = {"cone 70.3": "#c62828", "cone 60": "#ef9a9a", "punch": "#6a1b9a", "power k = 3": "#2e7d32",
-                "power k = 1.5": "#a5d6a7", "sphere": "#1565c0"}
+# Okabe and Ito's palette but yellow (washed out on a white page) and black (the references)
+SHAPE_COLORS = {"cone 70.3": "#D55E00", "cone 60": "#E69F00", "punch": "#CC79A7", "power k = 3": "#009E73",
+                "power k = 1.5": "#56B4E9", "sphere": "#0072B2"}
 
 # the estimate's target: from half to three times the true error
 EFFECTIVITY_BAND = (0.5, 3.0)

@@ -10,18 +10,19 @@ import pandas as pd
 
 from driver.charts.common import QUANTITY_COLORS, SHAPE_COLORS, Chart, need, save, shape_label
 
-CAPTION = ("Left: the exact spherical cap against Hertz's parabola of the same radius at the same depth: "
-           "the FE runs (markers) and Sneddon's exact sphere against Hertz (lines). Middle: F(d) of each "
-           "indenter, FE (markers) and Sneddon (lines), with the fitted slopes. Right: each shape's largest "
-           "error against Sneddon over n (exact contact); the punch is measured on F and its edge factor K, "
-           "the cone on F and a (its pressure is singular at the tip). Bottom right: the pressure profiles "
-           "at d = 0.02 against Sneddon's.")
+CAPTION = ("Top left: the exact spherical cap against Hertz's parabola of the same radius at the same depth: "
+           "the FE runs (markers) and Sneddon's exact sphere against Hertz (lines). Top right: F(d) of each "
+           "indenter, FE (markers) and Sneddon (lines), with the fitted slopes. Bottom left: each shape's "
+           "largest error against Sneddon over n (exact contact); the punch is measured on F and its edge "
+           "factor K, the cone on F and a (its pressure is singular at the tip). Bottom right: the pressure "
+           "profiles at d = 0.02 against Sneddon's.")
 
 
 def shapes(frame: pd.DataFrame, profiles: pd.DataFrame, path: Path) -> Path:
-    """Left: the exact sphere against Hertz's parabola of the same radius over d/R. Middle:
-    F against d for each shape (markers FE, lines Sneddon). Right: each shape's error against
-    n (exact contact). Rows are chosen by their columns (a case shared by two series is one row)."""
+    """A 2 x 2 grid: the exact sphere against Hertz's parabola of the same radius over d/R; F
+    against d for each shape (markers FE, lines Sneddon); each shape's error against n (exact
+    contact); the pressure profiles. Rows are chosen by their columns (a case shared by two
+    series is one row)."""
     df = need(frame[frame["status"].isin(["converged", "inaccurate"])], "no shapes rows").copy()
     df["label"] = df.apply(shape_label, axis=1)
     default = df[(df["method"] == "newton") & (df["n"] == 16)]
