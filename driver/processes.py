@@ -141,7 +141,10 @@ def reap_leftover(workdir: Path) -> int:
     pid_file = workdir / PID_FILE
     try:
         pgid_text, token = pid_file.read_text().split()
-        killed = kill_case(token, int(pgid_text))
+        pgid = int(pgid_text)
+        # a group is killed only while its leader carries the case's marker: a pid file
+        # written by hand, or left while the pid went to another process, names no case
+        killed = kill_case(token, pgid if pgid in processes_with(token) else None)
     except (OSError, ValueError):
         killed = 0
     pid_file.unlink(missing_ok=True)

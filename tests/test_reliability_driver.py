@@ -3,6 +3,7 @@ case whatever a rerun did, and one clear line (never a traceback) for every bad 
 address or row."""
 import os
 import signal
+import subprocess
 import time
 from pathlib import Path
 
@@ -13,6 +14,7 @@ from driver import api, files, freefem, studytable
 from driver.cases import Case
 from driver.dask_backend import _write_file
 from driver.errors import HertzError, OptionError, SpecError, SweepError
+from driver.processes import PID_FILE, reap_leftover
 from driver.run import run_case
 from driver.studies import load_spec
 from driver.sweeps import sweep
@@ -62,6 +64,22 @@ def test_a_run_removes_part_files_and_writes_through_no_planted_link(tmp_path):
     for name in ("summary.csv", "history.csv", "profile.csv"):
         assert (workdir / name).is_file() and not (workdir / name).is_symlink()
     assert not list(workdir.glob("*.part"))
+
+
+def test_a_pid_file_that_names_no_case_kills_nothing(tmp_path):
+    # a planted (or stale) freefem.pid would have the next run kill any process group of the user's
+    bystander = subprocess.Popen(["sleep", "60"], start_new_session=True)
+    try:
+        workdir = tmp_path / "case"
+        workdir.mkdir()
+        (workdir / PID_FILE).write_text(f"{bystander.pid} {'0' * 32}\n")
+        reap_leftover(workdir)
+        time.sleep(0.2)
+        assert bystander.poll() is None
+        assert not (workdir / PID_FILE).exists()
+    finally:
+        bystander.kill()
+        bystander.wait()
 
 
 # -- one row per case ------------------------------------------------------------------------
