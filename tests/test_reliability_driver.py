@@ -19,7 +19,7 @@ from driver.run import run_case
 from driver.studies import load_spec
 from driver.sweeps import sweep
 
-from conftest import cli, hertz, one_error_line
+from conftest import REPO, cli, hertz, one_error_line
 
 TINY = Case.of(n=4, L=50.0, farfield="clamped")  # ~0.1 s, inaccurate (an answer all the same)
 
@@ -273,3 +273,17 @@ def test_a_cut_last_line_is_set_aside_not_read_as_a_short_row(tmp_path):
     said = []
     assert list(studytable.read(path, say=said.append)["case_id"]) == ["a"]
     assert said and "line 3 set aside" in said[0]
+
+
+def test_a_report_reads_a_table_with_broken_rows_and_names_them(tmp_path):
+    # one row with an extra field used to abort the whole report
+    table = subprocess.run(["git", "show", "HEAD:results/units.csv"], cwd=REPO, capture_output=True,
+                           check=True, text=True).stdout
+    last = table.splitlines()[-1]
+    (tmp_path / "units.csv").write_text(table + last + ",extra\n" + last[:40] + "\n")
+    proc = hertz("report", "--results", str(tmp_path))
+    assert proc.returncode == 0, proc.stderr
+    rows = len(table.splitlines())
+    assert f"units.csv: line {rows + 1} set aside" in proc.stderr
+    assert f"units.csv: line {rows + 2} set aside" in proc.stderr
+    assert (tmp_path / "units.png").is_file()
