@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from driver.charts.common import QUANTITY_COLORS, SHAPE_COLORS
+from driver.charts.loading import CYLINDER_A, CYLINDER_P0, STYLES
 
 # Machado et al. (2009), severity 1
 SIMULATIONS = {
@@ -47,6 +48,8 @@ def closest_pair(colours: dict[str, str]) -> tuple[float, str]:
 @pytest.mark.parametrize("name,colours", [
     ("shapes", SHAPE_COLORS),
     ("quantities p0, F, a", dict(zip(("p0", "F", "a"), QUANTITY_COLORS))),
+    ("loading series", {name: colour for name, (colour, _) in STYLES.items()}),
+    ("the cylinder's a and p0", {"a": CYLINDER_A, "p0": CYLINDER_P0}),
 ])
 def test_series_colours_stay_apart_under_every_deficiency(name, colours):
     distance, pair = closest_pair(colours)
