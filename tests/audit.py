@@ -114,7 +114,7 @@ def truth(args: list[str], s: dict) -> dict[str, float]:
         Rx, Ry = float(option(args, "-Rx")), float(option(args, "-Ry"))
         e = ref.ellipsoid_from_load(P, E, nu, min(Rx, Ry), max(Rx, Ry)) if load else \
             ref.ellipsoid_from_depth(d, E, nu, min(Rx, Ry), max(Rx, Ry))
-        ax, by = (e.a, e.b) if Rx >= Ry else (e.b, e.a)
+        ax, by = (e.a_long, e.b_short) if Rx >= Ry else (e.b_short, e.a_long)
         err.update(p0=rel(got["p0"], e.p0), F=rel(got["d"], e.d) if load else rel(got["F"], e.P),
                    a=rel(got["a"], ax), b=rel(got["b"], by))
         return err
