@@ -116,3 +116,29 @@ def test_a_contact_collapsed_to_the_axis_is_a_judged_run_with_its_files(solve, a
     assert "film" not in run.stderr  # no warning names a film the scene does not have
     assert sorted(p.name for p in run.outdir.iterdir()) == RUN_FILES_2D
     assert len(run.table("axis")) > 1 and len(list(tmp_path.glob("f*.vtu"))) == 3
+
+
+def test_no_output_is_written_through_a_planted_link(tmp_path):
+    out, precious = tmp_path / "out", tmp_path / "precious.csv"
+    out.mkdir()
+    precious.write_text("precious\n")
+    for name in ("summary.csv.part", "summary.csv", "f_near.vtu"):
+        (out / name).symlink_to(precious)
+    proc = run_limited(["-n", "8", "-out", str(out), "-vtk", str(out / "f.vtu")], file_kb=10**6)
+    assert proc.returncode in (0, 5), proc.stderr
+    assert precious.read_text() == "precious\n"
+    # the run's files replace the links (a rename), and its parts folder is gone
+    for name in ("summary.csv", "f_near.vtu"):
+        assert not (out / name).is_symlink() and (out / name).stat().st_size > 1000, name
+    assert not (out / ".hertz-parts").exists()
+
+
+def test_a_failed_rerun_replaces_none_of_the_earlier_files(tmp_path):
+    out = tmp_path / "out"
+    first = run_limited(["-n", "8", "-out", str(out), "-vtk", str(out / "f.vtu")], file_kb=10**6)
+    assert first.returncode in (0, 5), first.stderr
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+    # a rerun of another scene whose VTK files do not fit: its CSV files must not land either
+    proc = run_limited(["-n", "8", "-E", "20", "-out", str(out), "-vtk", str(out / "f.vtu")], file_kb=64)
+    assert proc.returncode == 4 and "cannot write the" in proc.stderr, proc.stderr
+    assert {p.name: p.read_bytes() for p in out.iterdir()} == before
