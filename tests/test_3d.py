@@ -273,6 +273,7 @@ def test_a_3d_run_whose_solver_plugin_does_not_build_says_so_in_one_line(tmp_pat
     assert proc.returncode == 2, proc.stdout + proc.stderr
     assert len(said) == 1 and "surfaceschur.cpp) did not build" in said[0] and "libsuitesparse-dev" in said[0], said
     assert "Load error" not in proc.stdout + proc.stderr
+    assert "did not build" in proc.stderr and "did not build" not in proc.stdout  # beside build.sh's own lines
     assert not (copy / "plugin" / "surfaceschur.so").exists()  # nothing half-built left behind
 
 

@@ -1,5 +1,6 @@
 """No false convergence, no silent write failure, limits with clear messages (hertz.edp)."""
 import math
+import os
 import subprocess
 import time
 
@@ -142,3 +143,63 @@ def test_a_failed_rerun_replaces_none_of_the_earlier_files(tmp_path):
     proc = run_limited(["-n", "8", "-E", "20", "-out", str(out), "-vtk", str(out / "f.vtu")], file_kb=64)
     assert proc.returncode == 4 and "cannot write the" in proc.stderr, proc.stderr
     assert {p.name: p.read_bytes() for p in out.iterdir()} == before
+
+
+@pytest.mark.parametrize("where", ["a folder named summary.csv", "/proc"])
+def test_an_output_that_cannot_be_a_file_is_one_line_and_exit_4(tmp_path, where):
+    out = tmp_path / "out"
+    (out / "summary.csv").mkdir(parents=True)
+    target = "/proc" if where == "/proc" else str(out)
+    proc = run_limited(["-n", "8", "-out", target], file_kb=10**6)
+    assert proc.returncode == 4, proc.stdout[-500:]
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("hertz.edp: error: cannot write the output files"), proc.stderr
+    assert (out / "summary.csv").is_dir() and not any((out / "summary.csv").iterdir())
+
+
+def test_a_script_folder_with_a_semicolon_is_one_line_for_a_delegated_branch(tmp_path):
+    # FF_LOADPATH splits its folders on ';': the delegated branch could not find its plugins
+    import shutil
+
+    from driver.layout import EDP_DIR
+    folder = tmp_path / "semi;colon"
+    shutil.copytree(EDP_DIR, folder, ignore=shutil.ignore_patterns("*.so", "*.o"))
+    proc = subprocess.run(["FreeFem++", "-nw", "-v", "0", str(folder / "hertz.edp"), "-nu", "0.5", "-n", "4"],
+                          cwd=folder, capture_output=True, text=True, env=freefem.freefem_env(), timeout=120)
+    assert proc.returncode == 2
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and "holds a ';'" in lines[0], proc.stderr
+
+
+def _processes_naming(marker: str) -> list[int]:
+    found = []
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                with open(f"/proc/{entry}/cmdline", "rb") as f:
+                    if marker.encode() in f.read():
+                        found.append(int(entry))
+            except OSError:
+                pass
+    return found
+
+
+@pytest.mark.slow
+def test_a_killed_run_leaves_no_delegated_solver_behind(tmp_path):
+    marker = str(tmp_path / "orphan-check")
+    proc = subprocess.Popen(freefem.command(["-model", "3d", "-n", "10", "-out", marker]),
+                            env=freefem.freefem_env(), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.time() + 60
+        while time.time() < deadline and len(_processes_naming(marker)) < 2:
+            time.sleep(0.1)  # the 3D branch runs in a child of this one
+        assert len(_processes_naming(marker)) >= 2, "the 3D branch never started"
+        proc.kill()
+        proc.wait()
+        deadline = time.time() + 10
+        while time.time() < deadline and _processes_naming(marker):
+            time.sleep(0.1)
+        assert _processes_naming(marker) == []
+    finally:
+        for pid in _processes_naming(marker):
+            os.kill(pid, 9)
