@@ -21,15 +21,16 @@ import sys
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
-
-import pandas as pd
+from typing import TYPE_CHECKING, Any
 
 from driver import freefem, layout, schema
 from driver.cases import Case
 from driver.errors import HertzError, OptionError, RejectedError
 from driver.processes import LOCK_FILE, Busy, CaseLock, children_waitable
 from driver.run import LOG_FILE, MAX_TIMEOUT, rejected, run_case
+
+if TYPE_CHECKING:  # only annotations use it: hertz run does not load pandas
+    import pandas as pd
 
 DEFAULT_TIMEOUT = 600.0
 

@@ -8,10 +8,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from driver import freefem
+
+if TYPE_CHECKING:  # only annotations use it: hertz run does not load pandas
+    import pandas as pd
 
 LEADING = ["study", "case_id", "variant", "expect_converged"]
 TRAILING = ["edp_hash", "wall_time", "timings", "max_rss_mb", "jobs", "exit_code", "error"]

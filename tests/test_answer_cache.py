@@ -126,8 +126,6 @@ def test_a_word_in_a_number_column_is_not_a_number(solve, tmp_path, text):
     assert run.read_summary(path, freefem.summary_columns()) == (None, f"summary.csv: p0_fe is not a number: {text!r}")
 
 
-@pytest.mark.xfail(strict=True, reason="driver/api.py and driver/schema.py import pandas at their top "
-                                       "(only their annotations use it)")
 def test_hertz_run_imports_no_pandas(tmp_path):
     code = ("import sys; from driver.cli import main; code = main(['run', '--n', '8', '--out', sys.argv[1]]); "
             "print('pandas' in sys.modules); sys.exit(code)")
