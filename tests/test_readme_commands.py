@@ -32,6 +32,7 @@ EXCEPTIONS = {
     r"^\w+: make bench$": "installs the FEniCS peer and times every configuration: many minutes",
     r"^\w+: hertz bench$": "the timing benchmark: many minutes (make bench)",
     r"^\w+: make mutate$": "runs tests once per mutation: about 25 minutes",
+    r"^\w+: make audit$": "510 random scenes, 10 of them 3D: several minutes (test_audit.py runs a small draw)",
     r"^\w+: make rerun$": "recomputes every study from scratch: hours on 2 cores",
     r"^\w+: dask scheduler": "starts a server that runs until stopped (test_dask_backend runs a scheduler and workers)",
     r"tcp://host:8786": "host stands for the reader's own scheduler",
