@@ -24,17 +24,15 @@ import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from scipy.optimize import minimize_scalar
-
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
+
+from promise import BAR, ESTIMATE_SHARE  # noqa: E402  (what exit 0 promises)
 
 from driver import freefem  # noqa: E402
 
 import hertz_reference as ref  # noqa: E402  (the tests' own references)
 
-BAR = 0.01              # what exit 0 promises
-ESTIMATE_SHARE = 0.5    # the least share of its quantity's true error an estimate may read
 SILENT_FLOOR = 1e-3     # below this a run's error is not held against its estimate
 FALSE_ALARM = 0.3 * BAR
 QUANTITIES = ["p0", "F", "a", "b", "K"]  # F holds the depth d under -P, as est_err_F does
@@ -89,14 +87,6 @@ def option(args: list[str], name: str, default=None):
     return args[args.index(name) + 1] if name in args else default
 
 
-def max_pressure(fp, a: float, Es: float, k: float | None) -> float:
-    if k is None or k <= 2:
-        return ref.mdr_pressure(fp, 0.0, a, Es)
-    best = minimize_scalar(lambda r: -ref.mdr_pressure(fp, r, a, Es), bounds=(0, 0.95 * a), method="bounded",
-                           options={"xatol": 1e-5 * a})
-    return -best.fun
-
-
 def truth(args: list[str], s: dict) -> dict[str, float]:
     """Each quantity's true relative error (NaN where the scene has no such result)."""
     E, nu = float(option(args, "-E")), float(option(args, "-nu"))
@@ -144,7 +134,7 @@ def truth(args: list[str], s: dict) -> dict[str, float]:
     p = ref.punch_from_load(shape, P, E, nu, **geometry) if load else ref.punch_from_depth(shape, d, E, nu, **geometry)
     err.update(a=rel(got["a"], p.a), F=rel(got["d"], p.d) if load else rel(got["F"], p.F))
     if shape != "cone":
-        err["p0"] = rel(got["p0"], max_pressure(ref.profile_slope(shape, **geometry), p.a, Es, k))
+        err["p0"] = rel(got["p0"], ref.max_pressure(shape, p.a, Es, **geometry))
     return err
 
 

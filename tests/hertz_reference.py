@@ -151,6 +151,17 @@ def profile_slope(shape: str, R: float = 0.5, angle: float = 70.3, k: float = 1.
     raise ValueError(shape)
 
 
+def max_pressure(shape: str, a: float, Es: float, **geometry) -> float:
+    """The largest pressure: at the centre, or off it for a power law k > 2 (whose pressure dips there)."""
+    from scipy.optimize import minimize_scalar
+    fp = profile_slope(shape, **geometry)
+    if shape == "power" and geometry["k"] > 2:
+        best = minimize_scalar(lambda r: -mdr_pressure(fp, r, a, Es), bounds=(0, 0.95 * a),
+                               method="bounded", options={"xatol": 1e-4 * a})
+        return -best.fun
+    return mdr_pressure(fp, 0.0, a, Es)
+
+
 def profile_from_depth(fprime, d: float, Es: float, a_max: float) -> Punch:
     """a, d and F of the axisymmetric profile of slope fprime pressed to depth d (a by bisection
     on d = g(a), below a_max)."""
