@@ -58,6 +58,10 @@ def test_the_report_drawn_twice_from_the_committed_tables_is_the_same_bytes(tmp_
     for name, data in drawn.items():
         if name.endswith(".png"):
             assert VARIABLE_CHUNKS.isdisjoint(png_chunks(data)), name
+    # and the same bytes as the committed report: a fresh clone's make all leaves git status clean
+    committed = {name: subprocess.run(["git", "show", f"HEAD:results/{name}"], cwd=REPO, capture_output=True,
+                                      check=True).stdout for name in drawn}
+    assert [name for name in drawn if drawn[name] != committed[name]] == []
     report = drawn["REPORT.md"].decode()
     assert not re.search(r"\d\d:\d\d:\d\d|\d{4}-\d\d-\d\dT\d\d", report), "a time of day in REPORT.md"
     assert "matplotlib" in report and "Sweep: date" in report  # the versions and the sweep's own record stay
