@@ -98,10 +98,14 @@ def _check_out(out: Path, label: str) -> None:
         raise OptionError(f"{label}out {out} holds files that no run of hertz wrote; give a new or empty folder")
 
 
-def _run_single(case: Case, workdir: Path, timeout: float, extra: tuple[str, ...], unique: bool) -> tuple[dict, Path]:
-    """Run in workdir, or (unique) in the first of workdir, workdir.2, ... that no other run holds."""
+def _run_single(case: Case, workdir: Path, timeout: float, extra: tuple[str, ...], unique: bool,
+                fresh: bool = False) -> tuple[dict, Path]:
+    """Run in workdir, or (unique) in the first of workdir, workdir.2, ... that no other run holds
+    (fresh: that does not exist yet, so that an earlier run's files stay its own)."""
     for k in range(1, 1000 if unique else 2):
         candidate = workdir if k == 1 else workdir.with_name(f"{workdir.name}.{k}")
+        if fresh and candidate.exists():
+            continue
         missing = _missing_folders(candidate)
         try:
             with CaseLock(candidate):
@@ -128,8 +132,9 @@ def _run_single(case: Case, workdir: Path, timeout: float, extra: tuple[str, ...
 
 
 def solve_case(options: Mapping[str, object], timeout: float = DEFAULT_TIMEOUT,
-               results: str | Path = layout.DEFAULT_RESULTS, prefix: str = "") -> Result:
-    """solve() with the option names shown as the caller typed them (prefix "--" for hertz run)."""
+               results: str | Path = layout.DEFAULT_RESULTS, prefix: str = "", fresh: bool = False) -> Result:
+    """solve() with the option names shown as the caller typed them (prefix "--" for hertz run);
+    fresh: a folder of its own, never an earlier run's (solve())."""
     _check_timeout(timeout, prefix)
     _folder(results, f"{prefix}results")  # before anything runs
     table = freefem.options()
@@ -151,7 +156,7 @@ def solve_case(options: Mapping[str, object], timeout: float = DEFAULT_TIMEOUT,
             row, files = _run_single(case, paths["out"], timeout, extra, unique=False)
         else:
             single = layout.work_root(_folder(results, f"{prefix}results"), layout.SINGLE)
-            row, files = _run_single(case, single / case.case_id, timeout, extra, unique=True)
+            row, files = _run_single(case, single / case.case_id, timeout, extra, unique=True, fresh=fresh)
     if rejected(row):
         raise RejectedError(str(row["error"]))
     return Result.of(row, files)
@@ -162,11 +167,12 @@ def solve(*, timeout: float = DEFAULT_TIMEOUT, results: str | Path = layout.DEFA
     """Run hertz.edp once with these options (names without the dash: kpen=1e5,
     method="lagrange", vtk="fields.vtu", out="folder") and return its Result.
 
-    The run's files go to <results>/runs/single/<case_id>/ (a second folder
-    beside it if another run holds that one), or to `out`. Relative paths are
+    The run's files go to <results>/runs/single/<case_id>/, or, where an earlier
+    run's are, to the first of <case_id>.2, .3, ... that is new (each Result
+    keeps its own files), or to `out`. Relative paths are
     taken from the working directory. Raises OptionError or RejectedError for
     bad input; every other outcome is a Result."""
-    return solve_case(options, timeout, results)
+    return solve_case(options, timeout, results, fresh=True)
 
 
 def sweep(study: str | Path, *, cases: Iterable[Mapping[str, object]] | None = None, quick: bool = False,
@@ -197,4 +203,9 @@ def sweep(study: str | Path, *, cases: Iterable[Mapping[str, object]] | None = N
     outcome = sweeps.run_studies([job], results_dir, jobs or sweeps.cores(), timeout, force,
                                  retry_failed, say=lambda message: print(message, file=sys.stderr),
                                  scheduler=scheduler)[0]
-    return outcome.table.reset_index(drop=True)
+    # in the order the cases were asked (the table holds them in the order they finished),
+    # then the table's other cases
+    order = {case.case_id: k for k, case in enumerate(job.cases)}
+    table = outcome.table.reset_index(drop=True)
+    rank = table["case_id"].map(order).fillna(len(order))
+    return table.iloc[rank.argsort(kind="stable")].reset_index(drop=True)

@@ -58,3 +58,21 @@ def test_sweep_returns_the_studys_rows_as_a_dataframe(tmp_path):
     assert set(frame["status"]) == {"converged"} and (tmp_path / "mine.csv").is_file()
     with pytest.raises(OptionError, match="kpen must be a number"):
         sweep("mine", cases=[{"kpen": -1}], results=tmp_path)
+
+
+def test_sweep_returns_rows_in_the_order_the_cases_were_asked(tmp_path):
+    # the table holds rows in the order they finished (two jobs: the larger n finishes last)
+    from driver.api import sweep
+    cases = [{"d": d, "n": n} for d, n in ((0.04, 24), (0.01, 6), (0.02, 12))]
+    rows = sweep("ordered", cases=cases, results=tmp_path, jobs=2)
+    assert list(rows["d"]) == [0.04, 0.01, 0.02]
+    assert list(rows["n"]) == [24, 6, 12]
+
+
+def test_two_solves_of_one_scene_keep_their_own_files(tmp_path):
+    from driver.api import solve
+    first = solve(n=6, results=tmp_path)
+    kept = (first.files / "summary.csv").read_bytes()
+    second = solve(n=6, results=tmp_path)
+    assert second.files != first.files
+    assert (first.files / "summary.csv").read_bytes() == kept and (second.files / "summary.csv").is_file()
