@@ -24,8 +24,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TypeVar
 
-from driver import layout
-from driver.errors import OptionError, SetupError
+from driver import files, layout
+from driver.errors import HertzError, OptionError, SetupError
 
 FREEFEM = "FreeFem++"
 SETUP_HINT = "run 'make setup' (driver/setup.sh) to install FreeFEM"
@@ -148,17 +148,12 @@ def _cache_file(flag: str, fingerprint: str) -> Path:
 def _keep(path: Path, text: str) -> None:
     """Store an answer whole (a temporary file renamed), and drop the oldest beyond CACHE_ENTRIES.
     A cache that cannot be written costs only speed."""
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.part")
-    try:
+    with contextlib.suppress(OSError, HertzError):
         path.parent.mkdir(parents=True, exist_ok=True)
-        tmp.write_text(text)
-        os.replace(tmp, path)
+        files.write_text_atomically(path, text)  # through a fresh folder: no planted link followed
         entries = sorted(path.parent.glob("*.txt"), key=lambda p: p.stat().st_mtime_ns)
         for old in entries[:-CACHE_ENTRIES]:
             old.unlink(missing_ok=True)
-    except OSError:
-        with contextlib.suppress(OSError):
-            tmp.unlink(missing_ok=True)
 
 
 def _answer(flag: str, fingerprint: str, parse: Callable[[str], T]) -> T:
