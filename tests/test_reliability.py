@@ -203,3 +203,14 @@ def test_a_killed_run_leaves_no_delegated_solver_behind(tmp_path):
     finally:
         for pid in _processes_naming(marker):
             os.kill(pid, 9)
+
+
+def test_out_and_vtk_in_one_folder_named_two_ways_write_both(tmp_path):
+    # -out out -vtk ./out/f.vtu: the VTK files' parts folder is -out's; made anew a second
+    # time it dropped the CSV parts, and the run exited 4 with nothing written
+    proc = subprocess.run(freefem.command(["-n", "8", "-out", "out", "-vtk", "./out/f.vtu"]), cwd=tmp_path,
+                          capture_output=True, text=True, env=freefem.freefem_env(), timeout=300)
+    assert proc.returncode in (0, 5), proc.stderr
+    names = {p.name for p in (tmp_path / "out").iterdir()}
+    assert {"summary.csv", "profile.csv", "f.vtu", "f_near.vtu", "f_surface.vtu"} <= names, names
+    assert ".hertz-parts" not in names
