@@ -1,0 +1,104 @@
+"""Frictional indentation of an elastic half-plane by a rigid cylinder, by a
+boundary-element method of its own: the tests' reference for the stick zone
+of Spence's problem (plane strain, monotone loading), never shared with the
+solver.
+
+The surface is cut into cells of constant pressure p and shear q. Their
+surface displacements come from the half-plane's line-load solutions
+(Johnson, Contact Mechanics, eqs. 2.19 and 2.25; u_z positive into the
+body, q positive along +x):
+    u_x = -(1 - 2nu)(1 + nu)/(2E) int p sgn(x - s) ds - 2(1 - nu^2)/(pi E) int q ln|x - s| ds
+    u_z = -2(1 - nu^2)/(pi E) int p ln|x - s| ds + (1 - 2nu)(1 + nu)/(2E) int q sgn(x - s) ds
+Each load step is solved by an active set on the contact cells (p > 0, no
+penetration) and on their stick cells (no change of u_x in the step, and
+|q| <= mu p) against the slip cells (q = mu p sgn(x): the surface slides
+toward the axis, and friction holds it back).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+
+def _ln_integral(t: np.ndarray) -> np.ndarray:
+    """int ln|t| dt = t ln|t| - t (0 at t = 0)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(t == 0, 0.0, t * np.log(np.abs(t)) - t)
+
+
+def influence(x: np.ndarray, h: float, E: float, nu: float):
+    """Matrices of u_x and u_z at the cell centres x per unit p and q of each cell."""
+    d = x[:, None] - x[None, :]
+    ln = _ln_integral(d + h / 2) - _ln_integral(d - h / 2)   # int over the cell of ln|x - s| ds
+    sg = np.clip(d + h / 2, 0, h) - np.clip(h / 2 - d, 0, h)   # int over the cell of sgn(x - s) ds
+    c_ln = 2 * (1 - nu**2) / (np.pi * E)
+    c_sg = (1 - 2 * nu) * (1 + nu) / (2 * E)
+    return {"xp": -c_sg * sg, "xq": -c_ln * ln, "zp": -c_ln * ln, "zq": c_sg * sg}
+
+
+def spence_plane(mu: float, nu: float, steps: int = 80, cells: int = 600, E: float = 1.0, R: float = 1.0,
+                 load: float = 1e-3) -> dict:
+    """c/a and a after monotone loading to `load` (per unit length) in `steps` steps."""
+    Estar = E / (1 - nu**2)
+    a_final = np.sqrt(4 * load * R / (np.pi * Estar))
+    X = 1.25 * a_final
+    h = 2 * X / cells
+    x = -X + h * (np.arange(cells) + 0.5)
+    G = influence(x, h, E, nu)
+    sgn = np.sign(x)
+    ux_before = np.zeros(cells)
+    contact = np.abs(x) < 0.5 * a_final / steps + h
+    stick = contact.copy()
+    p = q = np.zeros(cells)
+    for k in range(1, steps + 1):
+        P = load * (k / steps) ** 2          # equal steps of the contact half-width
+        for _ in range(200):
+            C, S = np.flatnonzero(contact), np.flatnonzero(stick & contact)
+            L = np.flatnonzero(contact & ~stick)   # slip: q = mu p sgn(x)
+            nC, nS = len(C), len(S)
+            # unknowns: p on C, q on S, the approach d
+            n = nC + nS + 1
+            A = np.zeros((n, n))
+            b = np.zeros(n)
+            # slip cells' shear follows their pressure
+            slipOf = np.zeros((cells, nC))
+            pos = {c: i for i, c in enumerate(C)}
+            for c in L:
+                slipOf[c, pos[c]] = mu * sgn[c]
+            # u_z(x_i) - d = -x_i^2/(2R) on C (the indenter's surface, d deep)
+            Zp = G["zp"][np.ix_(C, C)] + G["zq"][C, :] @ slipOf
+            A[:nC, :nC] = Zp
+            A[:nC, nC:nC + nS] = G["zq"][np.ix_(C, S)]
+            A[:nC, -1] = -1
+            b[:nC] = -x[C] ** 2 / (2 * R)
+            # u_x(x_i) = its value before the step, on S
+            A[nC:nC + nS, :nC] = G["xp"][np.ix_(S, C)] + G["xq"][S, :] @ slipOf
+            A[nC:nC + nS, nC:nC + nS] = G["xq"][np.ix_(S, S)]
+            b[nC:nC + nS] = ux_before[S]
+            # the load
+            A[-1, :nC] = h
+            b[-1] = P
+            sol = np.linalg.solve(A, b)
+            p = np.zeros(cells)
+            p[C] = sol[:nC]
+            q = slipOf @ sol[:nC]
+            q[S] = sol[nC:nC + nS]
+            d = sol[-1]
+            uz = G["zp"] @ p + G["zq"] @ q
+            ux = G["xp"] @ p + G["xq"] @ q
+            new_contact = contact & (p >= 0) | (~contact & (uz - d < -x**2 / (2 * R)))
+            ok = np.abs(q) <= mu * p + 1e-14
+            moved = (ux - ux_before) * sgn
+            new_stick = new_contact & ((stick & ok) | (~stick & (moved > 0)))
+            if np.array_equal(new_contact, contact) and np.array_equal(new_stick, stick & contact):
+                break
+            contact, stick = new_contact, new_stick
+        ux_before = ux
+    a = np.abs(x[contact]).max() + h / 2
+    c = np.abs(x[stick & contact]).max() + h / 2 if (stick & contact).any() else 0.0
+    return {"a": a, "c": c, "c_over_a": c / a, "a_hertz": a_final, "p": p, "q": q, "x": x}
+
+
+if __name__ == "__main__":
+    for mu in (0.1, 0.2, 0.5, 1.0):
+        r = spence_plane(mu, 0.3)
+        print(mu, round(r["c_over_a"], 4), round(r["a"] / r["a_hertz"], 4))
