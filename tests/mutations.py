@@ -26,6 +26,19 @@ class Mutation:
 
 
 MUTATIONS = [
+    # Coulomb friction along the load path (edp/lib/methods/friction.idp, path.idp)
+    Mutation("a slip node's friction pushing along its slip", "edp/lib/methods/friction.idp",
+             "slipForce[surfaceUt[j]] = -bound[j]*signNow[j];", "slipForce[surfaceUt[j]] = bound[j]*signNow[j];",
+             ["tests/test_friction.py::test_slip_zone_carries_mu_p_and_the_stick_zone_less"]),
+    Mutation("full stick's stiffness without the last step's ring held", "edp/lib/methods/friction.idp",
+             "  bool fresh = muFriction >= fullStick;", "  bool fresh = false;",
+             ["tests/test_friction.py::test_full_stick_stiffness_is_mossakovskiis"]),
+    Mutation("a stick node held where it is, not where the step began", "edp/lib/methods/friction.idp",
+             "target[i] = heldTangential[j]; }", "target[i] = ur[][i]; }",
+             ["tests/test_friction.py::test_plane_stick_zone_against_boundary_elements"]),
+    Mutation("the path's depth growing linearly", "edp/lib/path.idp",
+             "  setDepth(t^2*finalDepth);", "  setDepth(t*finalDepth);",
+             ["tests/test_friction.py::test_a_frictionless_path_ends_where_one_step_does"]),
     # the surface's traces and gap in array arithmetic (edp/lib/fe/surface.idp)
     Mutation("a surface trace's samples read from the element before their own", "edp/lib/fe/surface.idp",
              "first[k++] = e;", "first[k++] = max(e - step, 0);",
