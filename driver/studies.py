@@ -313,6 +313,22 @@ class Study:
     charts: tuple[str, ...] = ()  # its charts in the report, drawn by driver/charts/ under these names
 
 
+def friction_study(quick: bool) -> list[Case]:
+    """Spence's problem: the stick zone c/a of a sphere pressed in with Coulomb
+    friction, against beta/mu for several nu, and the cylinder's against the
+    boundary-element reference (driver/references/spence.py); full stick's
+    stiffness against Mossakovskii's. c is read to half a node gap, so most
+    finite-mu runs end inaccurate (their estimate of c, 2% to 6% at n = 16)."""
+    nus = [0.3] if quick else [0.0, 0.2, 0.3, 0.4]
+    mus = [0.1, 0.3, 1.0] if quick else [0.05, 0.1, 0.2, 0.3, 0.5, 1.0, 2.0]
+    cases = [c.labelled(f"sphere, nu = {c.get('nu'):g}", False) for c in grid(Case(), nu=nus, mu=mus)]
+    cases += [c.labelled("full stick", c.get("nu") == 0.0) for c in grid(Case.of(mu=math.inf), nu=nus)]
+    plane = Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01)
+    cases += labelled(grid(plane, mu=[0.2, 0.5] if quick else [0.1, 0.2, 0.3, 0.5, 1.0]),
+                      lambda c: "cylinder, nu = 0.3", lambda c: False)
+    return cases
+
+
 STUDIES = {s.name: s for s in [
     Study("kpen", kpen_study, charts=("penalty",)),
     Study("mesh", mesh_study, charts=("mesh",)),
@@ -328,6 +344,7 @@ STUDIES = {s.name: s for s in [
     Study("shapes", shapes_study, keep=("profile.csv",), charts=("shapes",)),
     Study("layers", layers_study, keep=("profile.csv", "axis.csv"), charts=("layers",)),
     Study("loading", loading_study, charts=("loading",)),
+    Study("friction", friction_study, keep=("path.csv",), charts=("friction",)),
 ]}
 # the charts that read every study's rows, first in the report
 SUMMARY_CHARTS = ("accuracy_vs_speed", "effectivity", "zigzag")

@@ -1,7 +1,7 @@
 """Frictional indentation of an elastic half-plane by a rigid cylinder, by a
-boundary-element method of its own: the tests' reference for the stick zone
-of Spence's problem (plane strain, monotone loading), never shared with the
-solver.
+boundary-element method of its own: the reference for the stick zone of
+Spence's problem (plane strain, monotone loading) that the tests and the
+friction chart compare with, apart from the solver.
 
 The surface is cut into cells of constant pressure p and shear q. Their
 surface displacements come from the half-plane's line-load solutions
@@ -96,9 +96,3 @@ def spence_plane(mu: float, nu: float, steps: int = 80, cells: int = 600, E: flo
     a = np.abs(x[contact]).max() + h / 2
     c = np.abs(x[stick & contact]).max() + h / 2 if (stick & contact).any() else 0.0
     return {"a": a, "c": c, "c_over_a": c / a, "a_hertz": a_final, "p": p, "q": q, "x": x}
-
-
-if __name__ == "__main__":
-    for mu in (0.1, 0.2, 0.5, 1.0):
-        r = spence_plane(mu, 0.3)
-        print(mu, round(r["c_over_a"], 4), round(r["a"] / r["a_hertz"], 4))

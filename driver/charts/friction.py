@@ -1,0 +1,74 @@
+"""The friction study's chart: Spence's stick zone against beta/mu, and full stick's stiffness."""
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+
+from driver.charts.common import Chart, need, save
+from driver.references.spence import spence_plane
+
+CAPTION = ("Left: the stick zone's radius c over the contact radius a after monotone normal loading with "
+           "Coulomb friction (Spence's problem), against beta/mu, beta = (1 - 2nu)/(2(1 - nu)) for a rigid "
+           "indenter: spheres (axisymmetric) at four Poisson's ratios, and the cylinder (plane strain) "
+           "against a boundary-element solution of the half-plane (line). Bars: twice the run's own estimate "
+           "of c, which reads c to half a node gap (most finite-mu runs end inaccurate, exit 5, on it). "
+           "Right: full stick's contact stiffness S/(2E*a) against Mossakovskii's factor "
+           "(1 - nu) ln(3 - 4nu)/(1 - 2nu). Each point is a load path of 16 steps at n = 16.")
+# Okabe and Ito's colours, apart under every colour-vision deficiency; black is the reference
+NU_STYLES = {0.0: ("#0072B2", "o"), 0.2: ("#009E73", "s"), 0.3: ("#D55E00", "D"), 0.4: ("#CC79A7", "^")}
+
+
+def beta_of(nu: pd.Series | float):
+    return (1 - 2 * nu) / (2 * (1 - nu))
+
+
+def mossakovskii(nu: np.ndarray) -> np.ndarray:
+    nu = np.asarray(nu, dtype=float)
+    return np.where(np.isclose(nu, 0.5), 1.0, (1 - nu) * np.log(3 - 4 * nu) / (1 - 2 * np.minimum(nu, 0.4999)))
+
+
+def friction(frame: pd.DataFrame, path: Path) -> Path:
+    df = need(frame[frame["status"].isin(["converged", "inaccurate"])], "no friction rows")
+    fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5.6), gridspec_kw={"width_ratios": [1.6, 1]})
+    finite = df[np.isfinite(df["mu"]) & (df["mu"] > 0)].copy()
+    finite["x"] = beta_of(finite["nu"]) / finite["mu"]
+    finite["c_over_a"] = finite["c_fe"] / finite["a_fe"]
+    spheres = finite[finite["model"] == "axi"]
+    for nu, g in spheres.groupby("nu"):
+        color, marker = NU_STYLES.get(round(nu, 3), ("#999999", "x"))
+        g = g.sort_values("x")
+        left.errorbar(g["x"], g["c_over_a"], yerr=2 * g["est_err_c"] * g["c_over_a"], fmt=marker + "-",
+                      color=color, ms=6, capsize=2, lw=1, label=f"sphere, nu = {nu:g}")
+    cylinders = finite[finite["model"] == "plane"].sort_values("x")
+    if len(cylinders):
+        nu = cylinders["nu"].iloc[0]
+        left.errorbar(cylinders["x"], cylinders["c_over_a"], yerr=2 * cylinders["est_err_c"] * cylinders["c_over_a"],
+                      fmt="v", color="#E69F00", ms=7, capsize=2, label=f"cylinder, nu = {nu:g} (FE)")
+        mus = np.geomspace(cylinders["mu"].min() * 0.8, cylinders["mu"].max() * 1.2, 9)
+        ref = [spence_plane(mu, nu, steps=40, cells=300)["c_over_a"] for mu in mus]
+        left.plot(beta_of(nu) / mus, ref, "k-", lw=1.2, label=f"cylinder, nu = {nu:g}: boundary elements")
+    left.set(xscale="log", xlabel="beta / mu", ylabel="c / a", ylim=(0, 1.05),
+             title="Spence: the stick zone after monotone normal loading")
+    left.grid(True, which="both", alpha=0.3)
+    left.legend(fontsize=8)
+
+    stick = df[np.isinf(df["mu"])].sort_values("nu")
+    if len(stick):
+        ratio = stick["S_fe"] / (2 * stick["E"] / (1 - stick["nu"] ** 2) * stick["a_fe"])
+        nus = np.linspace(0, 0.45, 50)
+        right.plot(nus, mossakovskii(nus), "k-", label="Mossakovskii: (1 - nu) ln(3 - 4nu)/(1 - 2nu)")
+        right.plot(stick["nu"], ratio, "o", color="#0072B2", ms=7, label="FE, full stick (mu = inf)")
+        right.plot(nus, np.ones_like(nus), ":", color="#999999", label="frictionless: 1")
+        for nu, r in zip(stick["nu"], ratio):
+            right.annotate(f"{(r / mossakovskii(nu) - 1) * 100:+.2f}%", (nu, r), textcoords="offset points",
+                           xytext=(6, -12), fontsize=8)
+    right.set(xlabel="Poisson's ratio nu", ylabel="S / (2 E* a)", title="Full stick: the contact stiffness")
+    right.grid(True, alpha=0.3)
+    right.legend(fontsize=8)
+    return save(fig, path)
+
+
+CHARTS = {"friction": Chart(friction, CAPTION)}
