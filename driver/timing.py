@@ -36,6 +36,8 @@ DEFAULT = "default (newton P2, n=16)"
 ACCURACY_FINEST = "-accuracy 1e-4"
 ELLIPSOID = "3d ellipsoid Ry/Rx=4 (P2, n=8)"
 LOAD_CONTROL = "load control (-P 0.03, near the seed's force)"
+FRICTION = "friction, sphere (-mu 0.3, 16 steps)"
+FRICTION_TIMES = 3  # the target: a frictional normal indentation at most 3 times the frictionless run
 CONFIGS = {
     DEFAULT: Case(),
     "seed command (-kpen 1e5)": Case.of(kpen=1e5),
@@ -57,6 +59,9 @@ CONFIGS = {
     "coated: t = a/100 on a rigid base (lagrange)": Case.of(t=0.001, E2=math.inf, method="lagrange"),
     "3d sphere (P2, n=8)": Case.of(model="3d"),
     ELLIPSOID: Case.of(Rx=0.5, Ry=2.0),
+    FRICTION: Case.of(mu=0.3),
+    "full stick, sphere (-mu inf, 16 steps)": Case.of(mu=math.inf),
+    "friction, cylinder (-mu 0.3, -P 0.01)": Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01, mu=0.3),
 }
 FENICS = layout.PACKAGE_DIR.parent / "bench" / "fenics_peer.py"  # in a checkout only
 TAMAAS = layout.PACKAGE_DIR.parent / "bench" / "tamaas_peer.py"
@@ -232,6 +237,11 @@ def target_lines(table: pd.DataFrame, starts: pd.DataFrame) -> list[str]:
              ellipsoid.wall_median_s <= ELLIPSOID_WALL and ellipsoid.max_abs_err <= ELLIPSOID_ERROR,
              f"{ellipsoid.wall_median_s:.1f} s, max error {ellipsoid.max_abs_err:.2%} (p0, F, a, b)",
              f"at most {ELLIPSOID_WALL:g} s and {ELLIPSOID_ERROR:.1%}")
+    if FRICTION in by.index and DEFAULT in by.index:
+        rough, smooth = by.loc[FRICTION, "wall_median_s"], by.loc[DEFAULT, "wall_median_s"]
+        line("frictional normal indentation against the frictionless default", rough <= FRICTION_TIMES * smooth,
+             f"{rough:.2f} s against {smooth:.3f} s (ratio {rough / smooth:.1f})",
+             f"at most {FRICTION_TIMES} times")
     if HERTZ_RUN in by.index and BARE_RUN in by.index:
         hertz, bare = by.loc[HERTZ_RUN, "wall_median_s"], by.loc[BARE_RUN, "wall_median_s"]
         line("hertz run against the bare FreeFEM command", hertz <= CLI_RATIO * bare + CLI_EXTRA,
