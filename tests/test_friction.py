@@ -5,10 +5,10 @@ incompressible body, and the frictionless run itself."""
 import math
 
 import numpy as np
-import pandas as pd
 import pytest
 
 from driver.references.spence import spence_plane
+
 from hertz_reference import estar
 
 NUMBERS = ["p0_fe", "F_fe", "a_fe", "S_fe", "d_fe"]

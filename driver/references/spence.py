@@ -61,9 +61,9 @@ def spence_plane(mu: float, nu: float, steps: int = 80, cells: int = 600, E: flo
             b = np.zeros(n)
             # slip cells' shear follows their pressure
             slipOf = np.zeros((cells, nC))
-            pos = {c: i for i, c in enumerate(C)}
-            for c in L:
-                slipOf[c, pos[c]] = mu * sgn[c]
+            pos = {cell: i for i, cell in enumerate(C)}
+            for cell in L:
+                slipOf[cell, pos[cell]] = mu * sgn[cell]
             # u_z(x_i) - d = -x_i^2/(2R) on C (the indenter's surface, d deep)
             Zp = G["zp"][np.ix_(C, C)] + G["zq"][C, :] @ slipOf
             A[:nC, :nC] = Zp
@@ -93,6 +93,6 @@ def spence_plane(mu: float, nu: float, steps: int = 80, cells: int = 600, E: flo
                 break
             contact, stick = new_contact, new_stick
         ux_before = ux
-    a = np.abs(x[contact]).max() + h / 2
-    c = np.abs(x[stick & contact]).max() + h / 2 if (stick & contact).any() else 0.0
+    a = float(np.abs(x[contact]).max() + h / 2)
+    c = float(np.abs(x[stick & contact]).max() + h / 2) if (stick & contact).any() else 0.0
     return {"a": a, "c": c, "c_over_a": c / a, "a_hertz": a_final, "p": p, "q": q, "x": x}
