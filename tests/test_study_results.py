@@ -218,3 +218,17 @@ def test_the_loading_study_keeps_the_3_2_law_and_one_curve_both_ways(studies):
     for _, r in under.iterrows():
         d = (r["F_fe"] / C) ** (2 / 3)
         assert r["d_fe"] == pytest.approx(d, rel=3e-4) and r["a_fe"] == pytest.approx(K * d**0.5, rel=3e-4)
+
+
+def test_the_friction_study_keeps_spence_and_mossakovskii(studies):
+    df = rows(studies["friction"])
+    stick = df[df["variant"] == "full stick"]
+    nu = stick["nu"]
+    factor = (1 - nu) * np.log(3 - 4 * nu) / (1 - 2 * nu)
+    assert np.allclose(stick["S_fe"] / (2 * stick["E"] / (1 - nu**2) * stick["a_fe"]), factor, rtol=3e-3)
+    # the stick zone grows with mu, and stays inside the contact
+    spheres = df[df["variant"] == "sphere, nu = 0.3"].sort_values("mu")
+    ratio = (spheres["c_fe"] / spheres["a_fe"]).to_numpy()
+    assert len(ratio) == 3 and (np.diff(ratio) > 0).all() and ratio.max() < 1
+    # each run's path is kept beside it
+    assert (df["steps"] == 16).all()
