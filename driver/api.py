@@ -46,7 +46,7 @@ class Result:
     a: float         # contact radius (plane: half-width; 3d: semi-axis along x)
     b: float         # 3d: semi-axis along y; NaN in 2D
     estimated_error: float  # the run's own estimate of its max relative error (no Hertz)
-    files: Path      # the run's folder: summary.csv, profile.csv, history.csv, axis.csv, freefem.log
+    files: Path      # the run's folder: summary.csv, profile.csv, history.csv, path.csv, axis.csv, freefem.log
     error: str       # why it did not converge ("" if it did)
     row: Mapping[str, Any] = field(repr=False, compare=False)  # every column, as in a study table
 

@@ -146,7 +146,7 @@ def max_err(rows):
 
 
 # what -out holds after a 2D run, every file whole (no *.part)
-RUN_FILES_2D = ["axis.csv", "history.csv", "profile.csv", "summary.csv"]
+RUN_FILES_2D = ["axis.csv", "history.csv", "path.csv", "profile.csv", "summary.csv"]
 
 
 def statuses_of(code: int) -> set[str]:
