@@ -7,16 +7,11 @@ import math
 import numpy as np
 import pytest
 
-from driver.references.spence import spence_plane
+from driver.references.spence import mossakovskii, spence_plane
 
 from hertz_reference import estar
 
 NUMBERS = ["p0_fe", "F_fe", "a_fe", "S_fe", "d_fe"]
-
-
-def mossakovskii(nu: float) -> float:
-    """S / (2 E* a) under full stick (Mossakovskii; Borodich and Keer 2004)."""
-    return 1.0 if nu == 0.5 else (1 - nu) * math.log(3 - 4 * nu) / (1 - 2 * nu)
 
 
 def test_mu_zero_is_the_frictionless_run_to_the_digit(solve):

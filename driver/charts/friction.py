@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 
 from driver.charts.common import Chart, need, save
-from driver.references.spence import spence_plane
+from driver.references.spence import mossakovskii, rigid_beta, spence_plane
 
 CAPTION = ("Left: the stick zone's radius c over the contact radius a after monotone normal loading with "
            "Coulomb friction (Spence's problem), against beta/mu, beta = (1 - 2nu)/(2(1 - nu)) for a rigid "
@@ -21,20 +21,11 @@ CAPTION = ("Left: the stick zone's radius c over the contact radius a after mono
 NU_STYLES = {0.0: ("#0072B2", "o"), 0.2: ("#009E73", "s"), 0.3: ("#D55E00", "D"), 0.4: ("#CC79A7", "^")}
 
 
-def beta_of(nu: pd.Series | float):
-    return (1 - 2 * nu) / (2 * (1 - nu))
-
-
-def mossakovskii(nu: np.ndarray) -> np.ndarray:
-    nu = np.asarray(nu, dtype=float)
-    return np.where(np.isclose(nu, 0.5), 1.0, (1 - nu) * np.log(3 - 4 * nu) / (1 - 2 * np.minimum(nu, 0.4999)))
-
-
 def friction(frame: pd.DataFrame, path: Path) -> Path:
     df = need(frame[frame["status"].isin(["converged", "inaccurate"])], "no friction rows")
     fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5.6), gridspec_kw={"width_ratios": [1.6, 1]})
     finite = df[np.isfinite(df["mu"]) & (df["mu"] > 0)].copy()
-    finite["x"] = beta_of(finite["nu"]) / finite["mu"]
+    finite["x"] = rigid_beta(finite["nu"]) / finite["mu"]
     finite["c_over_a"] = finite["c_fe"] / finite["a_fe"]
     spheres = finite[finite["model"] == "axi"]
     for nu, g in spheres.groupby("nu"):
@@ -49,7 +40,7 @@ def friction(frame: pd.DataFrame, path: Path) -> Path:
                       fmt="v", color="#E69F00", ms=7, capsize=2, label=f"cylinder, nu = {nu:g} (FE)")
         mus = np.geomspace(cylinders["mu"].min() * 0.8, cylinders["mu"].max() * 1.2, 9)
         ref = [spence_plane(mu, nu, steps=40, cells=300)["c_over_a"] for mu in mus]
-        left.plot(beta_of(nu) / mus, ref, "k-", lw=1.2, label=f"cylinder, nu = {nu:g}: boundary elements")
+        left.plot(rigid_beta(nu) / mus, ref, "k-", lw=1.2, label=f"cylinder, nu = {nu:g}: boundary elements")
     left.set(xscale="log", xlabel="beta / mu", ylabel="c / a", ylim=(0, 1.05),
              title="Spence: the stick zone after monotone normal loading")
     left.grid(True, which="both", alpha=0.3)

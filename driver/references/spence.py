@@ -19,6 +19,19 @@ from __future__ import annotations
 import numpy as np
 
 
+def mossakovskii(nu):
+    """Full stick's contact stiffness over 2 E* a, any axisymmetric indenter
+    (Mossakovskii; Borodich and Keer 2004): (1 - nu) ln(3 - 4 nu)/(1 - 2 nu), 1 at nu = 1/2."""
+    nu = np.asarray(nu, dtype=float)
+    safe = np.minimum(nu, 0.4999)
+    return np.where(np.isclose(nu, 0.5), 1.0, (1 - safe) * np.log(3 - 4 * safe) / (1 - 2 * safe))
+
+
+def rigid_beta(nu):
+    """Dundurs' beta in magnitude for a rigid indenter on a body of Poisson's ratio nu."""
+    return (1 - 2 * np.asarray(nu, dtype=float)) / (2 * (1 - np.asarray(nu, dtype=float)))
+
+
 def _ln_integral(t: np.ndarray) -> np.ndarray:
     """int ln|t| dt = t ln|t| - t (0 at t = 0)."""
     with np.errstate(divide="ignore", invalid="ignore"):
