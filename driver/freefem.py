@@ -193,7 +193,7 @@ _INTEGER = re.compile(r"^[+-]?\d+$")
 @dataclass(frozen=True)
 class Option:
     name: str      # without the leading dash
-    kind: str      # real, int, word, path
+    kind: str      # real, int, word, path, list (numbers, comma separated, each in the range)
     default: str   # as hertz.edp documents it (a number, a word, or a rule)
     range: str
     help: str
@@ -229,6 +229,8 @@ class Option:
             if not isinstance(value, (str, Path)) or not str(value):
                 raise OptionError(f"{label} must be a path, got {shown!r}")
             return str(value)
+        if self.kind == "list":
+            return self._parse_list(value, label, shown)
         what = "an integer" if self.kind == "int" else "a number"
         wrong = OptionError(f"{label} must be {what} in {self.range.removeprefix('integer in ')}, got {shown!r}")
         number: int | float
@@ -273,6 +275,21 @@ class Option:
             return float(number)
         except OverflowError:
             raise wrong from None
+
+
+    def _parse_list(self, value: object, label: str, shown: str) -> str:
+        """A list option as hertz.edp reads it: its numbers, comma separated,
+        each in the range (hertz.edp checks what else the option asks)."""
+        wrong = OptionError(f"{label} must be numbers in {self.range}, got {shown!r}")
+        items = value.split(",") if isinstance(value, str) else value
+        if not isinstance(items, (list, tuple)) or not items:
+            raise wrong
+        element = Option(self.name, "real", "", self.range.removesuffix(" each, comma separated"), "")
+        try:
+            numbers = [element.parse(item.strip() if isinstance(item, str) else item) for item in items]
+        except OptionError:
+            raise wrong from None
+        return ",".join(repr(float(n)) if not float(n).is_integer() else str(int(n)) for n in numbers)
 
 
 def _option_table(text: str) -> tuple[Option, ...]:

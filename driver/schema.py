@@ -54,7 +54,7 @@ def study_columns(summary: list[str]) -> list[str]:
 def text_columns() -> set[str]:
     """Columns that hold words: the driver's, hertz.edp's word outputs, and every word
     or path option (a new one is text without a change here)."""
-    words = {name for name, o in freefem.options().items() if o.kind in ("word", "path")}
+    words = {name for name, o in freefem.options().items() if o.kind in ("word", "path", "list")}
     return set(DRIVER_TEXT) | set(OUTPUT_TEXT) | words
 
 

@@ -32,7 +32,7 @@ def test_options_table_is_machine_readable(solve):
     rows = list(csv.DictReader(io.StringIO("\n".join(lines[start:]))))
     names = [r["name"] for r in rows if r["name"].startswith("-")]
     assert {"-kpen", "-gamma", "-method", "-start", "-accuracy", "-maxdof"} <= set(names)
-    assert all(r["kind"] in ("real", "int", "word", "path") for r in rows if r["name"].startswith("-"))
+    assert all(r["kind"] in ("real", "int", "word", "path", "list") for r in rows if r["name"].startswith("-"))
 
 
 def test_equals_form_is_the_same_as_two_words(solve):

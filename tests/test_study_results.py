@@ -1,5 +1,6 @@
 """Physics claims checked on the quick studies (swept into a temporary directory)."""
 import numpy as np
+import pandas as pd
 import pytest
 
 from driver.references.spence import mossakovskii
@@ -222,7 +223,7 @@ def test_the_loading_study_keeps_the_3_2_law_and_one_curve_both_ways(studies):
         assert r["d_fe"] == pytest.approx(d, rel=3e-4) and r["a_fe"] == pytest.approx(K * d**0.5, rel=3e-4)
 
 
-def test_the_friction_study_keeps_spence_and_mossakovskii(studies):
+def test_the_friction_study_keeps_spence_and_mossakovskii(studies, quick_results):
     df = rows(studies["friction"])
     stick = df[df["variant"] == "full stick"]
     nu = stick["nu"]
@@ -233,3 +234,12 @@ def test_the_friction_study_keeps_spence_and_mossakovskii(studies):
     assert len(ratio) == 3 and (np.diff(ratio) > 0).all() and ratio.max() < 1
     # each run's path is kept beside it
     assert (df["steps"] == 16).all()
+    # the unloaded cylinder: its central stick zone shrank from the peak's, as the boundary elements say
+    unloaded = df[df["variant"] == "cylinder unloaded, nu = 0.3"]
+    assert len(unloaded) == 1 and unloaded["status"].isin(["converged", "inaccurate"]).all()
+    row = unloaded.iloc[0]
+    path = pd.read_csv(quick_results / "friction" / "path.csv")
+    steps = path[path["case_id"] == row["case_id"]].sort_values("step")
+    assert len(steps) == 32 and steps["P"].iloc[-1] == pytest.approx(0.5 * steps["P"].max(), rel=1e-9)
+    ratio = (steps["c"] / steps["a"]).to_numpy()
+    assert ratio[-1] < ratio[15] and row["c_fe"] / row["a_fe"] == pytest.approx(ratio[-1], rel=1e-12)

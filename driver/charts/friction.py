@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 
 from driver.charts.common import Chart, need, save
-from driver.references.spence import mossakovskii, rigid_beta, spence_plane
+from driver.references.spence import mossakovskii, rigid_beta, spence_path, spence_plane
 
 CAPTION = ("Left: the stick zone's radius c over the contact radius a after monotone normal loading with "
            "Coulomb friction (Spence's problem), against beta/mu, beta = (1 - 2nu)/(2(1 - nu)) for a rigid "
@@ -16,14 +16,23 @@ CAPTION = ("Left: the stick zone's radius c over the contact radius a after mono
            "against a boundary-element solution of the half-plane (line). Bars: twice the run's own estimate "
            "of c, which reads c to half a node gap (most finite-mu runs end inaccurate, exit 5, on it). "
            "Right: full stick's contact stiffness S/(2E*a) against Mossakovskii's factor "
-           "(1 - nu) ln(3 - 4nu)/(1 - 2nu). Each point is a load path of 16 steps at n = 16.")
+           "(1 - nu) ln(3 - 4nu)/(1 - 2nu). Each point is a load path of 16 steps at n = 16. "
+           "Bottom: a cylinder (mu = 0.2, nu = 0.3) loaded and unloaded to half its load (-path 1,0.5, 16 steps "
+           "a leg): c/a and a over the peak's a at every step, against the boundary elements along the same loads; "
+           "bars: twice each step's estimate.")
 # Okabe and Ito's colours, apart under every colour-vision deficiency; black is the reference
 NU_STYLES = {0.0: ("#0072B2", "o"), 0.2: ("#009E73", "s"), 0.3: ("#D55E00", "D"), 0.4: ("#CC79A7", "^")}
 
 
-def friction(frame: pd.DataFrame, path: Path) -> Path:
+def friction(frame: pd.DataFrame, paths: pd.DataFrame, path: Path) -> Path:
     df = need(frame[frame["status"].isin(["converged", "inaccurate"])], "no friction rows")
-    fig, (left, right) = plt.subplots(1, 2, figsize=(14, 5.6), gridspec_kw={"width_ratios": [1.6, 1]})
+    fig = plt.figure(figsize=(14, 10.5))
+    grid = fig.add_gridspec(2, 2, width_ratios=[1.6, 1])
+    left, right, bottom = fig.add_subplot(grid[0, 0]), fig.add_subplot(grid[0, 1]), fig.add_subplot(grid[1, :])
+    # a case whose load falls somewhere along its kept path was unloaded
+    falls = paths.sort_values("step").groupby("case_id")["P"].apply(lambda p: bool((np.diff(p) < 0).any()))
+    monotone = ~df["case_id"].map(falls).fillna(False).astype(bool)
+    unloaded, df = df[~monotone], df[monotone]
     finite = df[np.isfinite(df["mu"]) & (df["mu"] > 0)].copy()
     finite["x"] = rigid_beta(finite["nu"]) / finite["mu"]
     finite["c_over_a"] = finite["c_fe"] / finite["a_fe"]
@@ -59,7 +68,25 @@ def friction(frame: pd.DataFrame, path: Path) -> Path:
     right.set(xlabel="Poisson's ratio nu", ylabel="S / (2 E* a)", title="Full stick: the contact stiffness")
     right.grid(True, alpha=0.3)
     right.legend(fontsize=8)
+
+    for _, case in unloaded.iterrows():
+        rows = paths[paths["case_id"] == case["case_id"]].sort_values("step")
+        if not len(rows):
+            continue
+        peak = rows["a"].max()
+        bem = spence_path(case["mu"], case["nu"], rows["P"].to_numpy(), cells=400, E=case["E"], R=case["Rx"])
+        ratio = rows["c"] / rows["a"]
+        bottom.errorbar(rows["step"], ratio, yerr=2 * rows["est_err"] * ratio, fmt="v", color="#E69F00", ms=6,
+                        capsize=2, label=f"c/a, FE (mu = {case['mu']:g}, nu = {case['nu']:g})")
+        bottom.plot(rows["step"], [b["c_over_a"] for b in bem], "k-", lw=1.2, label="c/a, boundary elements")
+        bottom.plot(rows["step"], rows["a"] / peak, "o", color="#0072B2", ms=5, label="a / a_peak, FE")
+        bottom.plot(rows["step"], [b["a"] / peak for b in bem], "k--", lw=1, label="a / a_peak, boundary elements")
+        bottom.axvline(len(rows) / 2 + 0.5, color="#999999", ls=":", lw=1)
+    bottom.set(xlabel="step of the path (loading to the peak, then unloading to half the load)",
+               ylabel="c / a, a / a_peak", ylim=(0, 1.05), title="A cylinder loaded and unloaded: the stick zone along the path")
+    bottom.grid(True, alpha=0.3)
+    bottom.legend(fontsize=8, loc="center right")
     return save(fig, path)
 
 
-CHARTS = {"friction": Chart(friction, CAPTION)}
+CHARTS = {"friction": Chart(friction, CAPTION, kept=("path.csv",))}

@@ -1,7 +1,8 @@
 """Frictional indentation of an elastic half-plane by a rigid cylinder, by a
 boundary-element method of its own: the reference for the stick zone of
-Spence's problem (plane strain, monotone loading) that the tests and the
-friction chart compare with, apart from the solver.
+Spence's problem (plane strain, monotone loading), and along any sequence of
+loads (unloading too), that the tests and the friction chart compare with,
+apart from the solver.
 
 The surface is cut into cells of constant pressure p and shear q. Their
 surface displacements come from the half-plane's line-load solutions
@@ -11,8 +12,9 @@ body, q positive along +x):
     u_z = -2(1 - nu^2)/(pi E) int p ln|x - s| ds + (1 - 2nu)(1 + nu)/(2E) int q sgn(x - s) ds
 Each load step is solved by an active set on the contact cells (p > 0, no
 penetration) and on their stick cells (no change of u_x in the step, and
-|q| <= mu p) against the slip cells (q = mu p sgn(x): the surface slides
-toward the axis, and friction holds it back).
+|q| <= mu p) against the slip cells (q = mu p times the slip's direction,
+against the slide: under loading the surface slides toward the axis and q =
+mu p sgn(x); under unloading it may slide back).
 """
 from __future__ import annotations
 
@@ -48,25 +50,33 @@ def influence(x: np.ndarray, h: float, E: float, nu: float):
     return {"xp": -c_sg * sg, "xq": -c_ln * ln, "zp": -c_ln * ln, "zq": c_sg * sg}
 
 
-def spence_plane(mu: float, nu: float, steps: int = 80, cells: int = 600, E: float = 1.0, R: float = 1.0,
-                 load: float = 1e-3) -> dict:
-    """c/a and a after monotone loading to `load` (per unit length) in `steps` steps."""
+def spence_path(mu: float, nu: float, loads, cells: int = 600, E: float = 1.0, R: float = 1.0,
+                X: float | None = None) -> list[dict]:
+    """The state after each load (per unit length) of the sequence `loads`,
+    each step solved from the one before: a list of dicts with a, c and the
+    cells' p, q and x. Loads may rise and fall (unloading); X is the half-width
+    of the meshed surface (1.25 times the largest load's Hertz half-width
+    unless given)."""
+    loads = np.asarray(loads, dtype=float)
     Estar = E / (1 - nu**2)
-    a_final = np.sqrt(4 * load * R / (np.pi * Estar))
-    X = 1.25 * a_final
+    a_peak = np.sqrt(4 * loads.max() * R / (np.pi * Estar))
+    X = 1.25 * a_peak if X is None else X
     h = 2 * X / cells
     x = -X + h * (np.arange(cells) + 0.5)
     G = influence(x, h, E, nu)
     sgn = np.sign(x)
     ux_before = np.zeros(cells)
-    contact = np.abs(x) < 0.5 * a_final / steps + h
+    a_first = np.sqrt(4 * loads[0] * R / (np.pi * Estar))
+    contact = np.abs(x) < 0.5 * a_first + h
     stick = contact.copy()
-    p = q = np.zeros(cells)
-    for k in range(1, steps + 1):
-        P = load * (k / steps) ** 2          # equal steps of the contact half-width
+    # the direction of a slip cell's shear: the surface slides against it
+    # (toward the axis under loading, q = mu p sgn(x); away under unloading)
+    direction = sgn.copy()
+    states = []
+    for P in loads:
         for _ in range(200):
             C, S = np.flatnonzero(contact), np.flatnonzero(stick & contact)
-            L = np.flatnonzero(contact & ~stick)   # slip: q = mu p sgn(x)
+            L = np.flatnonzero(contact & ~stick)
             nC, nS = len(C), len(S)
             # unknowns: p on C, q on S, the approach d
             n = nC + nS + 1
@@ -76,10 +86,9 @@ def spence_plane(mu: float, nu: float, steps: int = 80, cells: int = 600, E: flo
             slipOf = np.zeros((cells, nC))
             pos = {cell: i for i, cell in enumerate(C)}
             for cell in L:
-                slipOf[cell, pos[cell]] = mu * sgn[cell]
+                slipOf[cell, pos[cell]] = mu * direction[cell]
             # u_z(x_i) - d = -x_i^2/(2R) on C (the indenter's surface, d deep)
-            Zp = G["zp"][np.ix_(C, C)] + G["zq"][C, :] @ slipOf
-            A[:nC, :nC] = Zp
+            A[:nC, :nC] = G["zp"][np.ix_(C, C)] + G["zq"][C, :] @ slipOf
             A[:nC, nC:nC + nS] = G["zq"][np.ix_(C, S)]
             A[:nC, -1] = -1
             b[:nC] = -x[C] ** 2 / (2 * R)
@@ -100,12 +109,36 @@ def spence_plane(mu: float, nu: float, steps: int = 80, cells: int = 600, E: flo
             ux = G["xp"] @ p + G["xq"] @ q
             new_contact = contact & (p >= 0) | (~contact & (uz - d < -x**2 / (2 * R)))
             ok = np.abs(q) <= mu * p + 1e-14
-            moved = (ux - ux_before) * sgn
+            # a slip cell that moved with its shear sticks; a stick cell past
+            # the cone slips against its shear
+            moved = (ux - ux_before) * direction
             new_stick = new_contact & ((stick & ok) | (~stick & (moved > 0)))
-            if np.array_equal(new_contact, contact) and np.array_equal(new_stick, stick & contact):
+            new_direction = np.where(stick & ~ok, np.sign(q), direction)
+            if np.array_equal(new_contact, contact) and np.array_equal(new_stick, stick & contact) \
+                    and np.array_equal(new_direction, direction):
                 break
-            contact, stick = new_contact, new_stick
+            contact, stick, direction = new_contact, new_stick, new_direction
         ux_before = ux
-    a = float(np.abs(x[contact]).max() + h / 2)
-    c = float(np.abs(x[stick & contact]).max() + h / 2) if (stick & contact).any() else 0.0
-    return {"a": a, "c": c, "c_over_a": c / a, "a_hertz": a_final, "p": p, "q": q, "x": x}
+        # cells that leave the contact forget their direction: one that
+        # touches again slides toward the axis first, as under loading
+        direction = np.where(contact, direction, sgn)
+        a = float(np.abs(x[contact]).max() + h / 2)
+        # the stick zone around the axis (cells past a slip cell are not in it)
+        centre = np.argsort(np.abs(x))
+        run = np.flatnonzero(~(stick & contact)[centre])
+        inside = centre[: run[0]] if len(run) else centre
+        c = float(np.abs(x[inside]).max() + h / 2) if len(inside) else 0.0
+        states.append({"P": float(P), "a": a, "c": c, "c_over_a": c / a, "d": float(d),
+                       "p": p, "q": q, "x": x})
+    return states
+
+
+def spence_plane(mu: float, nu: float, steps: int = 80, cells: int = 600, E: float = 1.0, R: float = 1.0,
+                 load: float = 1e-3) -> dict:
+    """c/a and a after monotone loading to `load` (per unit length) in `steps`
+    steps of equal growth of the contact half-width."""
+    Estar = E / (1 - nu**2)
+    a_final = np.sqrt(4 * load * R / (np.pi * Estar))
+    loads = load * (np.arange(1, steps + 1) / steps) ** 2
+    last = spence_path(mu, nu, loads, cells, E, R)[-1]
+    return {**last, "a_hertz": a_final}
