@@ -83,7 +83,8 @@ def friction(frame: pd.DataFrame, paths: pd.DataFrame, path: Path) -> Path:
         bottom.plot(rows["step"], [b["a"] / peak for b in bem], "k--", lw=1, label="a / a_peak, boundary elements")
         bottom.axvline(len(rows) / 2 + 0.5, color="#999999", ls=":", lw=1)
     bottom.set(xlabel="step of the path (loading to the peak, then unloading to half the load)",
-               ylabel="c / a, a / a_peak", ylim=(0, 1.05), title="A cylinder loaded and unloaded: the stick zone along the path")
+               ylabel="c / a, a / a_peak", ylim=(0, 1.05),
+               title="A cylinder loaded and unloaded: the stick zone along the path")
     bottom.grid(True, alpha=0.3)
     bottom.legend(fontsize=8, loc="center right")
     return save(fig, path)
