@@ -62,6 +62,10 @@ CONFIGS = {
     FRICTION: Case.of(mu=0.3),
     "full stick, sphere (-mu inf, 16 steps)": Case.of(mu=math.inf),
     "friction, cylinder (-mu 0.3, -P 0.01)": Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01, mu=0.3),
+    "tangential, cylinder (-Q mu P/2, 16 + 16 steps)": Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01, mu=0.3,
+                                                                 Q=0.0015),
+    "unloaded, cylinder (-path 1,0.5, -mu 0.2)": Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01, mu=0.2,
+                                                          path="1,0.5"),
 }
 FENICS = layout.PACKAGE_DIR.parent / "bench" / "fenics_peer.py"  # in a checkout only
 TAMAAS = layout.PACKAGE_DIR.parent / "bench" / "tamaas_peer.py"

@@ -17,9 +17,11 @@ CAPTION = ("Left: the stick zone's radius c over the contact radius a after mono
            "of c, which reads c to half a node gap (most finite-mu runs end inaccurate, exit 5, on it). "
            "Right: full stick's contact stiffness S/(2E*a) against Mossakovskii's factor "
            "(1 - nu) ln(3 - 4nu)/(1 - 2nu). Each point is a load path of 16 steps at n = 16. "
-           "Bottom: a cylinder (mu = 0.2, nu = 0.3) loaded and unloaded to half its load (-path 1,0.5, 16 steps "
-           "a leg): c/a and a over the peak's a at every step, against the boundary elements along the same loads; "
-           "bars: twice each step's estimate.")
+           "Bottom left: a cylinder (mu = 0.2, nu = 0.3) loaded and unloaded to half its load (-path 1,0.5, 16 "
+           "steps a leg): c/a and a over the peak's a at every step, against the boundary elements along the same "
+           "loads. Bottom right: a cylinder (mu = 0.3) pulled along x after the normal load up to Q = mu P/2 (-Q, "
+           "16 steps): c/a at each step against Cattaneo's (incompressible, beta = 0) and the boundary elements "
+           "(nu = 0.3). Bars: twice each step's estimate.")
 # Okabe and Ito's colours, apart under every colour-vision deficiency; black is the reference
 NU_STYLES = {0.0: ("#0072B2", "o"), 0.2: ("#009E73", "s"), 0.3: ("#D55E00", "D"), 0.4: ("#CC79A7", "^")}
 
@@ -28,11 +30,15 @@ def friction(frame: pd.DataFrame, paths: pd.DataFrame, path: Path) -> Path:
     df = need(frame[frame["status"].isin(["converged", "inaccurate"])], "no friction rows")
     fig = plt.figure(figsize=(14, 10.5))
     grid = fig.add_gridspec(2, 2, width_ratios=[1.6, 1])
-    left, right, bottom = fig.add_subplot(grid[0, 0]), fig.add_subplot(grid[0, 1]), fig.add_subplot(grid[1, :])
-    # a case whose load falls somewhere along its kept path was unloaded
-    falls = paths.sort_values("step").groupby("case_id")["P"].apply(lambda p: bool((np.diff(p) < 0).any()))
+    left, right = fig.add_subplot(grid[0, 0]), fig.add_subplot(grid[0, 1])
+    bottom, along = fig.add_subplot(grid[1, 0]), fig.add_subplot(grid[1, 1])
+    # a case whose load falls somewhere along its kept path was unloaded; one with Q_fe, pulled along x
+    # (a held load reads equal to rounding: a fall is one beyond it)
+    falls = paths.sort_values("step").groupby("case_id")["P"].apply(
+        lambda p: bool((np.diff(p) < -1e-9 * p.max()).any()))
     monotone = ~df["case_id"].map(falls).fillna(False).astype(bool)
-    unloaded, df = df[~monotone], df[monotone]
+    pulled = df["Q_fe"] > 0
+    unloaded, tangential, df = df[~monotone & ~pulled], df[pulled], df[monotone & ~pulled]
     finite = df[np.isfinite(df["mu"]) & (df["mu"] > 0)].copy()
     finite["x"] = rigid_beta(finite["nu"]) / finite["mu"]
     finite["c_over_a"] = finite["c_fe"] / finite["a_fe"]
@@ -87,6 +93,29 @@ def friction(frame: pd.DataFrame, paths: pd.DataFrame, path: Path) -> Path:
                title="A cylinder loaded and unloaded: the stick zone along the path")
     bottom.grid(True, alpha=0.3)
     bottom.legend(fontsize=8, loc="center right")
+
+    shares = np.linspace(0, 0.99, 100)
+    along.plot(shares, np.sqrt(1 - shares), "k-", lw=1.2, label="Cattaneo: sqrt(1 - Q/(mu P)) (beta = 0)")
+    for _, case in tangential.sort_values("nu", ascending=False).iterrows():
+        # the tangential leg's rows (the normal legs' Q is 0 to rounding)
+        rows = paths[(paths["case_id"] == case["case_id"]) & (paths["Q"] > 1e-6 * case["Q_fe"])].sort_values("step")
+        color, marker = NU_STYLES.get(round(case["nu"], 3), ("#E69F00", "v"))
+        ratio = rows["c"] / rows["a"]
+        label = f"FE, nu = {case['nu']:g} (beta = {rigid_beta(case['nu']):.2f})"
+        along.errorbar(rows["Q"] / (case["mu"] * rows["P"]), ratio, yerr=2 * rows["est_err"] * ratio, fmt=marker,
+                       color=color, ms=6, capsize=2, label=label)
+        if case["nu"] < 0.5:
+            every = paths[paths["case_id"] == case["case_id"]].sort_values("step")
+            bem = spence_path(case["mu"], case["nu"], every["P"].to_numpy(), cells=400, E=case["E"], R=case["Rx"],
+                              tangential=every["Q"].to_numpy())
+            pulled_steps = (every["Q"] > 1e-6 * case["Q_fe"]).to_numpy()
+            along.plot(every["Q"][pulled_steps] / (case["mu"] * every["P"][pulled_steps]),
+                       [b["c_over_a"] for b, k in zip(bem, pulled_steps) if k], "--", color=color, lw=1.2,
+                       label=f"nu = {case['nu']:g}: boundary elements")
+    along.set(xlabel="Q / (mu P)", ylabel="c / a", xlim=(0, 1), ylim=(0, 1.05),
+              title="A cylinder pulled along x after the normal load")
+    along.grid(True, alpha=0.3)
+    along.legend(fontsize=8, loc="lower left")
     return save(fig, path)
 
 

@@ -51,13 +51,17 @@ def influence(x: np.ndarray, h: float, E: float, nu: float):
 
 
 def spence_path(mu: float, nu: float, loads, cells: int = 600, E: float = 1.0, R: float = 1.0,
-                X: float | None = None) -> list[dict]:
+                X: float | None = None, tangential=None) -> list[dict]:
     """The state after each load (per unit length) of the sequence `loads`,
-    each step solved from the one before: a list of dicts with a, c and the
-    cells' p, q and x. Loads may rise and fall (unloading); X is the half-width
-    of the meshed surface (1.25 times the largest load's Hertz half-width
-    unless given)."""
+    each step solved from the one before: a list of dicts with a, c, the
+    stick zone's middle, the indenter's move along x (dt, from the state of
+    the first step) and the cells' p, q and x. Loads may rise and fall
+    (unloading); tangential, beside them, is the force along x on the body
+    (0 unless given), which the indenter's move along x settles. X is the
+    half-width of the meshed surface (1.25 times the largest load's Hertz
+    half-width unless given)."""
     loads = np.asarray(loads, dtype=float)
+    forces = np.zeros_like(loads) if tangential is None else np.asarray(tangential, dtype=float)
     Estar = E / (1 - nu**2)
     a_peak = np.sqrt(4 * loads.max() * R / (np.pi * Estar))
     X = 1.25 * a_peak if X is None else X
@@ -73,13 +77,14 @@ def spence_path(mu: float, nu: float, loads, cells: int = 600, E: float = 1.0, R
     # (toward the axis under loading, q = mu p sgn(x); away under unloading)
     direction = sgn.copy()
     states = []
-    for P in loads:
+    shift = 0.0   # the indenter's move along x
+    for P, Q in zip(loads, forces):
         for _ in range(200):
             C, S = np.flatnonzero(contact), np.flatnonzero(stick & contact)
             L = np.flatnonzero(contact & ~stick)
             nC, nS = len(C), len(S)
-            # unknowns: p on C, q on S, the approach d
-            n = nC + nS + 1
+            # unknowns: p on C, q on S, the approach d, and the step's move along x
+            n = nC + nS + 2
             A = np.zeros((n, n))
             b = np.zeros(n)
             # slip cells' shear follows their pressure
@@ -90,28 +95,36 @@ def spence_path(mu: float, nu: float, loads, cells: int = 600, E: float = 1.0, R
             # u_z(x_i) - d = -x_i^2/(2R) on C (the indenter's surface, d deep)
             A[:nC, :nC] = G["zp"][np.ix_(C, C)] + G["zq"][C, :] @ slipOf
             A[:nC, nC:nC + nS] = G["zq"][np.ix_(C, S)]
-            A[:nC, -1] = -1
+            A[:nC, -2] = -1
             b[:nC] = -x[C] ** 2 / (2 * R)
-            # u_x(x_i) = its value before the step, on S
+            # u_x(x_i) = its value before the step plus the indenter's move, on S
             A[nC:nC + nS, :nC] = G["xp"][np.ix_(S, C)] + G["xq"][S, :] @ slipOf
             A[nC:nC + nS, nC:nC + nS] = G["xq"][np.ix_(S, S)]
+            A[nC:nC + nS, -1] = -1
             b[nC:nC + nS] = ux_before[S]
-            # the load
-            A[-1, :nC] = h
-            b[-1] = P
+            # the load, and the force along x (q on the slip cells follows p)
+            A[-2, :nC] = h
+            b[-2] = P
+            A[-1, :nC] = h * slipOf.sum(axis=0)
+            A[-1, nC:nC + nS] = h
+            b[-1] = Q
+            if nS == 0:   # nothing sticks: the move is not defined, and the force is the slip's
+                A[-1, :] = 0
+                A[-1, -1] = 1
+                b[-1] = 0
             sol = np.linalg.solve(A, b)
             p = np.zeros(cells)
             p[C] = sol[:nC]
             q = slipOf @ sol[:nC]
             q[S] = sol[nC:nC + nS]
-            d = sol[-1]
+            d, step_shift = sol[-2], sol[-1]
             uz = G["zp"] @ p + G["zq"] @ q
             ux = G["xp"] @ p + G["xq"] @ q
             new_contact = contact & (p >= 0) | (~contact & (uz - d < -x**2 / (2 * R)))
             ok = np.abs(q) <= mu * p + 1e-14
             # a slip cell that moved with its shear sticks; a stick cell past
             # the cone slips against its shear
-            moved = (ux - ux_before) * direction
+            moved = (ux - ux_before - step_shift) * direction
             new_stick = new_contact & ((stick & ok) | (~stick & (moved > 0)))
             new_direction = np.where(stick & ~ok, np.sign(q), direction)
             if np.array_equal(new_contact, contact) and np.array_equal(new_stick, stick & contact) \
@@ -119,17 +132,22 @@ def spence_path(mu: float, nu: float, loads, cells: int = 600, E: float = 1.0, R
                 break
             contact, stick, direction = new_contact, new_stick, new_direction
         ux_before = ux
+        shift += step_shift
         # cells that leave the contact forget their direction: one that
         # touches again slides toward the axis first, as under loading
         direction = np.where(contact, direction, sgn)
-        a = float(np.abs(x[contact]).max() + h / 2)
-        # the stick zone around the axis (cells past a slip cell are not in it)
-        centre = np.argsort(np.abs(x))
-        run = np.flatnonzero(~(stick & contact)[centre])
-        inside = centre[: run[0]] if len(run) else centre
-        c = float(np.abs(x[inside]).max() + h / 2) if len(inside) else 0.0
-        states.append({"P": float(P), "a": a, "c": c, "c_over_a": c / a, "d": float(d),
-                       "p": p, "q": q, "x": x})
+        # the stick zone: the longest run of stick cells (around the axis
+        # under normal loading), its half-width c and its middle
+        held = np.concatenate([[0], (stick & contact).astype(int), [0]])
+        starts, ends = np.flatnonzero(np.diff(held) == 1), np.flatnonzero(np.diff(held) == -1)
+        if len(starts):
+            k = int(np.argmax(ends - starts))
+            c, middle = (ends[k] - starts[k]) * h / 2, float(x[starts[k]] + x[ends[k] - 1]) / 2
+        else:
+            c, middle = 0.0, float("nan")
+        a = float((x[contact].max() - x[contact].min() + h) / 2)
+        states.append({"P": float(P), "Q": float(Q), "a": a, "c": c, "c_over_a": c / a, "middle": middle,
+                       "d": float(d), "dt": shift, "p": p, "q": q, "x": x})
     return states
 
 
