@@ -317,10 +317,11 @@ def friction_study(quick: bool) -> list[Case]:
     """Spence's problem: the stick zone c/a of a sphere pressed in with Coulomb
     friction, against beta/mu for several nu, and the cylinder's against the
     boundary-element reference (driver/references/spence.py); full stick's
-    stiffness against Mossakovskii's; a cylinder loaded and unloaded to half
-    its load, its stick zone along the path against the boundary elements;
-    and (not in the quick subset) a cylinder under a tangential force of half
-    mu P, against Cattaneo (nu = 1/2) and the boundary elements (nu = 0.3).
+    stiffness against Mossakovskii's; and, not in the quick subset, a
+    cylinder loaded and unloaded to half its load, its stick zone along the
+    path against the boundary elements, and a cylinder under a tangential
+    force of half mu P, against Cattaneo (nu = 1/2) and the boundary elements
+    (nu = 0.3).
     c is read to half a node gap, so most finite-mu runs end inaccurate
     (their estimate of c, 2% to 6% at n = 16)."""
     nus = [0.3] if quick else [0.0, 0.2, 0.3, 0.4]
@@ -330,11 +331,12 @@ def friction_study(quick: bool) -> list[Case]:
     plane = Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01)
     cases += labelled(grid(plane, mu=[0.2, 0.5] if quick else [0.1, 0.2, 0.3, 0.5, 1.0]),
                       lambda c: "cylinder, nu = 0.3", lambda c: False)
-    # loaded, then unloaded to half the load: the stick zone along the path
-    cases.append(Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01, mu=0.2, path="1,0.5")
-                 .labelled("cylinder unloaded, nu = 0.3", False))
-    # then a tangential force of half mu P: Cattaneo where beta = 0, the boundary elements at nu = 0.3
+    # (not in the quick subset, whose paths tests/test_path.py and test_tangential.py run)
     if not quick:
+        # loaded, then unloaded to half the load: the stick zone along the path
+        cases.append(Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01, mu=0.2, path="1,0.5")
+                     .labelled("cylinder unloaded, nu = 0.3", False))
+        # a tangential force of half mu P: Cattaneo where beta = 0, the boundary elements at nu = 0.3
         cases += [Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01, mu=0.3, Q=0.0015, nu=nu)
                   .labelled(f"cylinder under Q, nu = {nu:g}", False) for nu in (0.5, 0.3)]
     return cases

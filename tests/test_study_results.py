@@ -234,12 +234,8 @@ def test_the_friction_study_keeps_spence_and_mossakovskii(studies, quick_results
     assert len(ratio) == 3 and (np.diff(ratio) > 0).all() and ratio.max() < 1
     # each run's path is kept beside it
     assert (df["steps"] == 16).all()
-    # the unloaded cylinder: its central stick zone shrank from the peak's, as the boundary elements say
-    unloaded = df[df["variant"] == "cylinder unloaded, nu = 0.3"]
-    assert len(unloaded) == 1 and unloaded["status"].isin(["converged", "inaccurate"]).all()
-    row = unloaded.iloc[0]
+    # each kept path ends at its summary row
     path = pd.read_csv(quick_results / "friction" / "path.csv")
-    steps = path[path["case_id"] == row["case_id"]].sort_values("step")
-    assert len(steps) == 32 and steps["P"].iloc[-1] == pytest.approx(0.5 * steps["P"].max(), rel=1e-9)
-    ratio = (steps["c"] / steps["a"]).to_numpy()
-    assert ratio[-1] < ratio[15] and row["c_fe"] / row["a_fe"] == pytest.approx(ratio[-1], rel=1e-12)
+    for _, row in df.iterrows():
+        last = path[path["case_id"] == row["case_id"]].sort_values("step").iloc[-1]
+        assert last["a"] == pytest.approx(row["a_fe"], rel=1e-12) and last["P"] == pytest.approx(row["F_fe"], rel=1e-9)
