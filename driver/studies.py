@@ -321,7 +321,7 @@ def friction_study(quick: bool) -> list[Case]:
     cylinder loaded and unloaded to half its load, its stick zone along the
     path against the boundary elements, and a cylinder under a tangential
     force of half mu P, against Cattaneo (nu = 1/2) and the boundary elements
-    (nu = 0.3).
+    (nu = 0.3), once and in a fretting cycle (Mindlin and Deresiewicz).
     c is read to half a node gap, so most finite-mu runs end inaccurate
     (their estimate of c, 2% to 6% at n = 16)."""
     nus = [0.3] if quick else [0.0, 0.2, 0.3, 0.4]
@@ -339,6 +339,9 @@ def friction_study(quick: bool) -> list[Case]:
         # a tangential force of half mu P: Cattaneo where beta = 0, the boundary elements at nu = 0.3
         cases += [Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01, mu=0.3, Q=0.0015, nu=nu)
                   .labelled(f"cylinder under Q, nu = {nu:g}", False) for nu in (0.5, 0.3)]
+        # a fretting cycle: Q to mu P/2, back to -mu P/2 and up again (Mindlin and Deresiewicz's branches)
+        cases.append(Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01, mu=0.3, Q=0.0015, nu=0.5, Qpath="1,-1,1")
+                     .labelled("cylinder, a fretting cycle, nu = 0.5", False))
     return cases
 
 

@@ -21,7 +21,8 @@ CAPTION = ("Left: the stick zone's radius c over the contact radius a after mono
            "steps a leg): c/a and a over the peak's a at every step, against the boundary elements along the same "
            "loads. Bottom right: a cylinder (mu = 0.3) pulled along x after the normal load up to Q = mu P/2 (-Q, "
            "16 steps): c/a at each step against Cattaneo's (incompressible, beta = 0) and the boundary elements "
-           "(nu = 0.3). Bars: twice each step's estimate.")
+           "(nu = 0.3), and a fretting cycle (-Qpath 1,-1,1, open squares) against Mindlin and Deresiewicz's "
+           "branches. Bars: twice each step's estimate.")
 # Okabe and Ito's colours, apart under every colour-vision deficiency; black is the reference
 NU_STYLES = {0.0: ("#0072B2", "o"), 0.2: ("#009E73", "s"), 0.3: ("#D55E00", "D"), 0.4: ("#CC79A7", "^")}
 
@@ -96,23 +97,37 @@ def friction(frame: pd.DataFrame, paths: pd.DataFrame, path: Path) -> Path:
 
     shares = np.linspace(0, 0.99, 100)
     along.plot(shares, np.sqrt(1 - shares), "k-", lw=1.2, label="Cattaneo: sqrt(1 - Q/(mu P)) (beta = 0)")
+    reversed_any = False
     for _, case in tangential.sort_values("nu", ascending=False).iterrows():
-        # the tangential leg's rows (the normal legs' Q is 0 to rounding)
-        rows = paths[(paths["case_id"] == case["case_id"]) & (paths["Q"] > 1e-6 * case["Q_fe"])].sort_values("step")
-        color, marker = NU_STYLES.get(round(case["nu"], 3), ("#E69F00", "v"))
+        # the tangential legs' rows: after the normal legs, whose Q is 0 (to rounding) and whose P rises
+        every = paths[paths["case_id"] == case["case_id"]].sort_values("step")
+        first = int(np.argmax(np.abs(every["Q"].to_numpy()) > 1e-6 * abs(case["Q_fe"])))
+        rows = every.iloc[first:]
+        cycle = case["Q_fe"] < 0 or (np.diff(rows["Q"]) < 0).any()
+        color, marker = ("#009E73", "s") if cycle else NU_STYLES.get(round(case["nu"], 3), ("#E69F00", "v"))
         ratio = rows["c"] / rows["a"]
         label = f"FE, nu = {case['nu']:g} (beta = {rigid_beta(case['nu']):.2f})"
+        label += ", a fretting cycle" if cycle else ""
         along.errorbar(rows["Q"] / (case["mu"] * rows["P"]), ratio, yerr=2 * rows["est_err"] * ratio, fmt=marker,
-                       color=color, ms=6, capsize=2, label=label)
+                       color=color, ms=5 if cycle else 6, capsize=2, label=label, lw=0.6, elinewidth=1,
+                       ls="-" if cycle else "none", mfc="none" if cycle else color)
+        if cycle:
+            reversed_any = True
+            peak = rows["Q"].abs().max() / (case["mu"] * case["P"])
+            back = np.linspace(peak, -peak, 100)
+            along.plot(back, np.sqrt(1 - (peak - back) / 2), "k:", lw=1.2,
+                       label="Mindlin-Deresiewicz: back, sqrt(1 - (Q* - Q)/(2 mu P)); again, mirrored")
+            along.plot(back, np.sqrt(1 - (peak + back) / 2), "k:", lw=1.2)
+            continue
         if case["nu"] < 0.5:
             every = paths[paths["case_id"] == case["case_id"]].sort_values("step")
             bem = spence_path(case["mu"], case["nu"], every["P"].to_numpy(), cells=400, E=case["E"], R=case["Rx"],
                               tangential=every["Q"].to_numpy())
             pulled_steps = (every["Q"] > 1e-6 * case["Q_fe"]).to_numpy()
             along.plot(every["Q"][pulled_steps] / (case["mu"] * every["P"][pulled_steps]),
-                       [b["c_over_a"] for b, k in zip(bem, pulled_steps) if k], "--", color=color, lw=1.2,
+                       [b["c_over_a"] for b, k in zip(bem, pulled_steps) if k], "-", color=color, lw=1,
                        label=f"nu = {case['nu']:g}: boundary elements")
-    along.set(xlabel="Q / (mu P)", ylabel="c / a", xlim=(0, 1), ylim=(0, 1.05),
+    along.set(xlabel="Q / (mu P)", ylabel="c / a", xlim=(-0.55 if reversed_any else 0, 1), ylim=(0, 1.05),
               title="A cylinder pulled along x after the normal load")
     along.grid(True, alpha=0.3)
     along.legend(fontsize=8, loc="lower left")
