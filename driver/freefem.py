@@ -284,7 +284,9 @@ class Option:
         items = value.split(",") if isinstance(value, str) else value
         if not isinstance(items, (list, tuple)) or not items:
             raise wrong
-        element = Option(self.name, "real", "", self.range.removesuffix(" each, comma separated"), "")
+        # each element's range: the interval the table's range text opens with
+        interval = re.match(r"^[\[(][^\])]*[\])]", self.range)
+        element = Option(self.name, "real", "", interval.group(0) if interval else self.range, "")
         try:
             numbers = [element.parse(item.strip() if isinstance(item, str) else item) for item in items]
         except OptionError:
