@@ -106,3 +106,17 @@ def test_the_solver_runs_the_kernels_its_cpu_allows(tmp_path):
     assert proc.returncode == 0, proc.stderr
     if expected:
         assert f"Core: {expected}" in proc.stdout + proc.stderr, proc.stdout + proc.stderr
+
+
+@pytest.mark.parametrize("name, value, parsed", [
+    ("path", "1, 0.5", "1,0.5"), ("path", [1, 0.25, 1], "1,0.25,1"), ("Qpath", "1,-1,1", "1,-1,1"),
+    ("path", "1,0", None), ("path", "1,x", None), ("Qpath", "1,-2", None), ("path", "", None),
+])
+def test_a_list_option_is_its_numbers_each_in_the_range(name, value, parsed):
+    option = freefem.options()[name]
+    if parsed is None:
+        with pytest.raises(OptionError) as error:
+            option.parse(value)
+        assert f"-{name}" in str(error.value) and option.range in str(error.value)
+    else:
+        assert option.parse(value) == parsed
