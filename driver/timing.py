@@ -38,6 +38,8 @@ ELLIPSOID = "3d ellipsoid Ry/Rx=4 (P2, n=8)"
 LOAD_CONTROL = "load control (-P 0.03, near the seed's force)"
 FRICTION = "friction, sphere (-mu 0.3, 16 steps)"
 FRICTION_TIMES = 3  # the target: a frictional normal indentation at most 3 times the frictionless run
+TWO_BODIES = "two identical spheres (-E1 10)"
+TWO_BODIES_TIMES = 2  # the target: a two-body run at default options at most 2 times the rigid one
 CONFIGS = {
     DEFAULT: Case(),
     "seed command (-kpen 1e5)": Case.of(kpen=1e5),
@@ -60,6 +62,8 @@ CONFIGS = {
     "3d sphere (P2, n=8)": Case.of(model="3d"),
     ELLIPSOID: Case.of(Rx=0.5, Ry=2.0),
     FRICTION: Case.of(mu=0.3),
+    TWO_BODIES: Case.of(E1=10.0),
+    "two dissimilar spheres (-E1 30 -nu1 0.2 -R2 1, -P 0.01)": Case.of(E1=30.0, nu1=0.2, R2=1.0, P=0.01),
     "full stick, sphere (-mu inf, 16 steps)": Case.of(mu=math.inf),
     "friction, cylinder (-mu 0.3, -P 0.01)": Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01, mu=0.3),
     "tangential, cylinder (-Q mu P/2, 16 + 16 steps)": Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01, mu=0.3,
@@ -246,6 +250,10 @@ def target_lines(table: pd.DataFrame, starts: pd.DataFrame) -> list[str]:
         line("frictional normal indentation against the frictionless default", rough <= FRICTION_TIMES * smooth,
              f"{rough:.2f} s against {smooth:.3f} s (ratio {rough / smooth:.1f})",
              f"at most {FRICTION_TIMES} times")
+    if TWO_BODIES in by.index and DEFAULT in by.index:
+        two, one = by.loc[TWO_BODIES, "wall_median_s"], by.loc[DEFAULT, "wall_median_s"]
+        line("two elastic bodies against the rigid indenter", two <= TWO_BODIES_TIMES * one,
+             f"{two:.3f} s against {one:.3f} s (ratio {two / one:.2f})", f"at most {TWO_BODIES_TIMES} times")
     if HERTZ_RUN in by.index and BARE_RUN in by.index:
         hertz, bare = by.loc[HERTZ_RUN, "wall_median_s"], by.loc[BARE_RUN, "wall_median_s"]
         line("hertz run against the bare FreeFEM command", hertz <= CLI_RATIO * bare + CLI_EXTRA,

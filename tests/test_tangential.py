@@ -102,8 +102,8 @@ def test_a_reversed_force_follows_mindlin_and_deresiewicz(solve):
     Where Q crosses 0 the indenter's move along x is the slip's alone (the
     domain's compliance times Q vanishes), which the boundary elements give
     along the same loads. Measured at n = 16, 8 steps a leg: c'/a within
-    2.8% at every step of the reversed leg (+0.8% at its first), the move at
-    Q = 0 within 0.1%."""
+    1.5% at every step of the reversed leg (+0.8% at its first; 2.8% where
+    the edge was fitted linearly there), the move at Q = 0 within 0.1%."""
     run = solve(*CYLINDER, "-nu", "0.5", "-Q", str(Q), "-Qpath", "1,-1")
     s, rows = run.summary, run.table("path")
     assert run.exit_code in (0, 5), run.output
@@ -113,7 +113,7 @@ def test_a_reversed_force_follows_mindlin_and_deresiewicz(solve):
     assert s["Q_fe"] == pytest.approx(-Q, rel=1e-9)
     ratio = (back["c"] / back["a"]).to_numpy()
     md = np.sqrt(1 - (Q - back["Q"].to_numpy()) / (2 * MU * P))
-    assert np.abs(ratio / md - 1).max() < 0.04, ratio / md - 1
+    assert np.abs(ratio / md - 1).max() < 0.025, ratio / md - 1
     assert (np.abs(ratio / md - 1) <= 2 * back["est_err"].to_numpy()).all()
     bem = spence_path(MU, 0.5, rows["P"].to_numpy(), cells=400, E=10.0, R=0.5, tangential=rows["Q"].to_numpy())
     zero = 16 + 3   # the reversed leg's fourth step: Q = 0

@@ -34,6 +34,28 @@ def rigid_beta(nu):
     return (1 - 2 * np.asarray(nu, dtype=float)) / (2 * (1 - np.asarray(nu, dtype=float)))
 
 
+def dundurs_beta(E1: float, nu1: float, E2: float, nu2: float) -> float:
+    """Dundurs' beta of an indenter (E1, nu1; E1 = inf: rigid) on a body (E2, nu2), plane
+    strain: [G1 (k2 - 1) - G2 (k1 - 1)]/[G1 (k2 + 1) + G2 (k1 + 1)] with k = 3 - 4 nu;
+    0 for identical bodies, rigid_beta(nu2) for a rigid indenter."""
+    if not np.isfinite(E1):
+        return float(rigid_beta(nu2))
+    g1, g2 = E1 / (2 * (1 + nu1)), E2 / (2 * (1 + nu2))
+    k1, k2 = 3 - 4 * nu1, 3 - 4 * nu2
+    return (g1 * (k2 - 1) - g2 * (k1 - 1)) / (g1 * (k2 + 1) + g2 * (k1 + 1))
+
+
+def equivalent_rigid(E1: float, nu1: float, E2: float, nu2: float) -> tuple[float, float]:
+    """(E, nu) of a body under a rigid indenter whose surfaces' relative displacements
+    equal those of two elastic half-planes: the same 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2
+    for p and q, and the same beta for their coupling (plane strain, where the normal and
+    the tangential kernels share E*), so that spence_path solves two bodies."""
+    beta = dundurs_beta(E1, nu1, E2, nu2)
+    nu = (1 - 2 * beta) / (2 - 2 * beta)
+    inv = (1 - nu2**2) / E2 + ((1 - nu1**2) / E1 if np.isfinite(E1) else 0.0)
+    return (1 - nu**2) / inv, nu
+
+
 def _ln_integral(t: np.ndarray) -> np.ndarray:
     """int ln|t| dt = t ln|t| - t (0 at t = 0)."""
     with np.errstate(divide="ignore", invalid="ignore"):
