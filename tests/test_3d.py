@@ -288,3 +288,21 @@ def test_a_3d_run_typed_by_its_full_path_from_another_folder_loads_its_plugin(tm
                           timeout=300)
     assert proc.returncode in (0, 5) and "Load error" not in proc.stdout + proc.stderr, proc.stdout + proc.stderr
     assert (tmp_path / "out" / "summary.csv").read_text().splitlines()[1].startswith("3d,")
+
+
+def test_two_elastic_spheres_in_3d(solve):
+    """The 3D quarter with an elastic indenter (its u_z alone changed to the
+    relative approach): a sphere pair at n = 6 within 0.1% of Hertz, and its
+    estimate covering it. Measured: p0 -0.003%, F -0.004%, a +0.066%,
+    b -0.033% (estimate 0.53%)."""
+    run = solve("-model", "3d", "-E1", "10", "-n", "6")
+    s = run.summary
+    assert run.exit_code == 0, run.output
+    Estar = 1 / (2 * (1 - 0.3**2) / 10)   # two identical bodies: half the modulus
+    a = math.sqrt(0.5 * 0.02)
+    ref = {"p0_fe": 2 * Estar * a / (math.pi * 0.5), "F_fe": 4 / 3 * Estar * a * 0.02, "a_fe": a}
+    for q, v in (("p0_fe", ref["p0_fe"]), ("F_fe", ref["F_fe"]), ("a_fe", ref["a_fe"]), ("b_fe", ref["a_fe"])):
+        assert abs(s[q] / v - 1) < 0.002 and abs(s[q] / v - 1) <= s["accuracy_predicted"], q
+    assert s["d1_fe"] == pytest.approx(s["d2_fe"], rel=1e-9)
+    axis = run.table("axis")
+    assert axis["sigma_z_indenter"].iloc[0] == pytest.approx(axis["sigma_z"].iloc[0], rel=0.01)

@@ -20,7 +20,8 @@ CAPTION = ("Two elastic bodies (-E1, -nu1, -R2), each a half-space meshed on its
            "(two hemispheres of R = 50 mm, E = 20,000 MPa, 4 mm approach: a = 10 mm); lines: Hertz. Middle: "
            "an elastic sphere's exact cap on a flat body of its own material, as a/R grows: the run's F and a "
            "against Hertz's parabola, and Sneddon's exact sphere (lines), which the run follows; the gap "
-           "between them is the error Hertz makes. Bars: twice the run's own estimate. Right: two cylinders "
+           "between them is the error Hertz makes; stars: SSNV104's two exact spheres (-shape sphere -R2), "
+           "against Hertz's parabolas of the relative radius. Bars: twice the run's own estimate. Right: two cylinders "
            "(plane strain, mu = 0.3, nu = 0.3) pulled along x after the normal load up to Q = mu P/2 (16 "
            "steps): identical bodies have Dundurs' beta = 0, so Cattaneo's c/a = sqrt(1 - Q/(mu P)) holds "
            "at nu = 0.3; a three times stiffer indenter has beta = 0.14, against the boundary elements of "
@@ -90,6 +91,16 @@ def bodies(frame: pd.DataFrame, paths: pd.DataFrame, path: Path) -> Path:
                     label="Sneddon's exact sphere: F")
         middle.plot(a / R, 100 * (a / np.sqrt(R * d) - 1), "-", color="#D55E00", lw=1,
                     label="Sneddon's exact sphere: a")
+    pair = df[df["variant"] == "SSNV104, exact caps"]
+    for _, case in pair.iterrows():
+        # against Hertz's parabolas of the relative radius at the same approach
+        hertz_a = np.sqrt(case["Rrel"] * case["d_fe"])
+        hertz_F = 4 / 3 * case["Estar"] * np.sqrt(case["Rrel"]) * case["d_fe"] ** 1.5
+        x = case["a_fe"] / case["R"]
+        middle.plot(x, 100 * (case["F_fe"] / hertz_F - 1), "*", color="#0072B2", ms=12, mec="k",
+                    label="SSNV104's two exact spheres: F (a/R of each)")
+        middle.plot(x, 100 * (case["a_fe"] / hertz_a - 1), "*", color="#D55E00", ms=12, mec="k",
+                    label="SSNV104's two exact spheres: a")
     middle.axhline(0, color="k", lw=0.6)
     middle.set(xlabel="a / R", ylabel="difference from Hertz's parabola at the same d (%)",
                title="An elastic exact sphere on a flat body: Hertz's error")
