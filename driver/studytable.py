@@ -197,14 +197,15 @@ def check(path: Path, columns: list[str]) -> Checked:
 
 
 def _typed(frame: pd.DataFrame, text: set[str]) -> pd.DataFrame:
-    for col in frame.columns:
+    """Each column typed at once, into a new frame (a column replaced in place, one at a time,
+    left a frame of a block per column, which pandas warns about on the report's stderr)."""
+    def typed(col: str) -> pd.Series:
         if col in text:
-            frame[col] = frame[col].fillna("").astype(str)
-        elif col == "expect_converged":
-            frame[col] = frame[col].map({"True": True, "False": False, "": True})
-        else:
-            frame[col] = pd.to_numeric(frame[col].replace("", math.nan), errors="coerce")
-    return frame
+            return frame[col].fillna("").astype(str)
+        if col == "expect_converged":
+            return frame[col].map({"True": True, "False": False, "": True})
+        return pd.to_numeric(frame[col].replace("", math.nan), errors="coerce")
+    return pd.DataFrame({col: typed(col) for col in frame.columns}, index=frame.index)
 
 
 def frame_of(columns: list[str], rows: list[list[str]]) -> pd.DataFrame:

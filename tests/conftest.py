@@ -218,7 +218,15 @@ def copy_tracked(target: Path) -> Path:
 
 # -- tiers ----------------------------------------------------------------------------------
 
+# the longest files first: pytest-xdist hands whole files (--dist loadfile) to whichever worker
+# is free, in collection order, so a long file left to the end keeps one worker busy alone
+LONGEST_FIRST = ["test_readme_commands", "test_report", "test_study_results", "test_friction", "test_layers",
+                 "test_3d", "test_tangential"]
+
+
 def pytest_collection_modifyitems(config, items):
+    rank = {name: k for k, name in enumerate(LONGEST_FIRST)}
+    items.sort(key=lambda item: rank.get(Path(str(item.fspath)).stem, len(rank)))  # stable: the rest as collected
     for item in items:
         module = Path(str(item.fspath)).stem
         if module in SLOW_MODULES or SLOW_FIXTURES & set(getattr(item, "fixturenames", ())):

@@ -84,7 +84,7 @@ MUTATIONS = [
              "  if (!along) setDepth(t^2*finalDepth);", "  setDepth(t^2*finalDepth);",
              ["tests/test_tangential.py::test_cattaneo_on_an_incompressible_cylinder"]),
     Mutation("the tangential stick edge read with the normal loading's linear law", "edp/lib/methods/friction.idp",
-             "    if (tangentialTarget > 0) g = g^2;", "",
+             "    if (alongLeg) g = g^2;", "",
              ["tests/test_tangential.py::test_cattaneo_on_an_incompressible_cylinder"]),
     Mutation("the whole width's contact read at its right edge alone", "edp/lib/solve/measure.idp",
              "  return 0.5*(right + left);", "  return right;",
