@@ -12,6 +12,7 @@
 from __future__ import annotations
 
 import contextlib
+import fcntl
 import functools
 import io
 import os
@@ -90,10 +91,22 @@ def solve(tmp_path_factory):
 
 @pytest.fixture(scope="session")
 def quick_results(tmp_path_factory) -> Path:
-    """Every quick study swept into a temporary results folder (about 25 s on 2 cores)."""
-    results = tmp_path_factory.mktemp("results")
-    jobs = [Job(name, study.make(True), study.keep, study.repeats) for name, study in STUDIES.items()]
-    run_studies(jobs, results, jobs=2, timeout=600)
+    """Every quick study swept into a temporary results folder (about 40 s on 2 cores), once for
+    the whole session: under pytest-xdist the workers share it through their common temporary
+    folder, the first to need it sweeping while a later one waits on the lock (the tests only
+    read it, or copy it)."""
+    # (a worker's base folder is the session's, one level down; without xdist it is the session's)
+    base = tmp_path_factory.getbasetemp()
+    shared = base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base
+    results, done = shared / "quick_results", shared / "quick_results.done"
+    with open(shared / "quick_results.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not done.exists():
+            shutil.rmtree(results, ignore_errors=True)
+            results.mkdir()
+            jobs = [Job(name, study.make(True), study.keep, study.repeats) for name, study in STUDIES.items()]
+            run_studies(jobs, results, jobs=2, timeout=600)
+            done.touch()
     return results
 
 

@@ -26,6 +26,19 @@ class Mutation:
 
 
 MUTATIONS = [
+    # J2 plasticity's return map and tangent (edp/lib/fe/plasticity.idp, tests/edp/thick_cylinder.edp)
+    Mutation("J2: the tangent without its n x n term", "edp/lib/fe/plasticity.idp",
+             "- 2*lameMu*thetaBar*flowDot(u#r, u#z)", "- 0*lameMu*thetaBar*flowDot(u#r, u#z)",
+             ["tests/test_plasticity.py::test_newton_converges_quadratically_on_the_consistent_tangent"]),
+    Mutation("J2: the yield stress without hardening", "edp/lib/fe/plasticity.idp",
+             "q[k] - yieldStress - hardeningModulus*plasticEq[][k]", "q[k] - yieldStress",
+             ["tests/test_plasticity.py::test_hardening_lifts_the_pressure_past_the_perfect_limit"]),
+    Mutation("J2: no plastic strain carried", "edp/lib/fe/plasticity.idp",
+             "  grow *= sqrt(1.5);", "  grow *= 0;",
+             ["tests/test_plasticity.py::test_unloading_is_elastic_from_the_plastic_state"]),
+    Mutation("J2: the return overshooting the yield surface", "edp/lib/fe/plasticity.idp",
+             "/(3*lameMu + hardeningModulus);", "/(2*lameMu + hardeningModulus);",
+             ["tests/test_plasticity.py::test_the_cylinder_collapses_at_the_fully_plastic_pressure"]),
     # two elastic bodies (edp/lib/fe/elasticity2d.idp, scene.idp, options.idp, post/results.idp)
     Mutation("bodies: the indenter's far boundary held still", "edp/lib/fe/elasticity2d.idp",
              "uwr=indenterFarR, uwz=indenterFarZ);", "uwr=0, uwz=0);",

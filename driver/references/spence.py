@@ -109,25 +109,26 @@ def spence_path(mu: float, nu: float, loads, cells: int = 600, E: float = 1.0, R
             n = nC + nS + 2
             A = np.zeros((n, n))
             b = np.zeros(n)
-            # slip cells' shear follows their pressure
-            slipOf = np.zeros((cells, nC))
-            pos = {cell: i for i, cell in enumerate(C)}
-            for cell in L:
-                slipOf[cell, pos[cell]] = mu * direction[cell]
+            # slip cells' shear follows their pressure: q = slip p on L, at their columns of p
+            slip = mu * direction[L]
+            at = np.searchsorted(C, L)   # (C is sorted: flatnonzero)
             # u_z(x_i) - d = -x_i^2/(2R) on C (the indenter's surface, d deep)
-            A[:nC, :nC] = G["zp"][np.ix_(C, C)] + G["zq"][C, :] @ slipOf
+            A[:nC, :nC] = G["zp"][np.ix_(C, C)]
+            A[:nC, at] += G["zq"][np.ix_(C, L)] * slip
             A[:nC, nC:nC + nS] = G["zq"][np.ix_(C, S)]
             A[:nC, -2] = -1
             b[:nC] = -x[C] ** 2 / (2 * R)
             # u_x(x_i) = its value before the step plus the indenter's move, on S
-            A[nC:nC + nS, :nC] = G["xp"][np.ix_(S, C)] + G["xq"][S, :] @ slipOf
+            A[nC:nC + nS, :nC] = G["xp"][np.ix_(S, C)]
+            A[nC:nC + nS, at] += G["xq"][np.ix_(S, L)] * slip
             A[nC:nC + nS, nC:nC + nS] = G["xq"][np.ix_(S, S)]
             A[nC:nC + nS, -1] = -1
             b[nC:nC + nS] = ux_before[S]
             # the load, and the force along x (q on the slip cells follows p)
             A[-2, :nC] = h
             b[-2] = P
-            A[-1, :nC] = h * slipOf.sum(axis=0)
+            A[-1, :nC] = 0
+            A[-1, at] = h * slip
             A[-1, nC:nC + nS] = h
             b[-1] = Q
             if nS == 0:   # nothing sticks: the move is not defined, and the force is the slip's
@@ -137,7 +138,8 @@ def spence_path(mu: float, nu: float, loads, cells: int = 600, E: float = 1.0, R
             sol = np.linalg.solve(A, b)
             p = np.zeros(cells)
             p[C] = sol[:nC]
-            q = slipOf @ sol[:nC]
+            q = np.zeros(cells)
+            q[L] = slip * sol[at]
             q[S] = sol[nC:nC + nS]
             d, step_shift = sol[-2], sol[-1]
             uz = G["zp"] @ p + G["zq"] @ q
