@@ -26,6 +26,12 @@ class Mutation:
 
 
 MUTATIONS = [
+    Mutation("an ellipsoid advised to use -shape sphere", "edp/lib/solve/judge.idp",
+             '            : (ellipsoid ? " (the ellipsoid', '            : (false ? " (the ellipsoid',
+             ["tests/test_load.py::test_an_ellipsoids_parabola_warning_does_not_advise_a_shape_that_refuses_it"]),
+    Mutation("a diverged fixed point silent on its stability limit", "edp/lib/post/report.idp",
+             "+ (methodAsked == FIXEDPOINT && kappa > kappaCritical", "+ (false && kappa > kappaCritical",
+             ["tests/test_physics.py::test_fixed_point_reports_divergence_at_large_kpen"]),
     # J2 plasticity's return map and tangent (edp/lib/fe/plasticity.idp, tests/edp/thick_cylinder.edp)
     Mutation("J2: the tangent without its n x n term", "edp/lib/fe/plasticity.idp",
              "- 2*lameMu*thetaBar*flowDot(u#r, u#z)", "- 0*lameMu*thetaBar*flowDot(u#r, u#z)",

@@ -100,6 +100,17 @@ def test_the_elliptical_example_under_load(solve):
     assert s["S_fe"] == pytest.approx(1.5 * 100 / ref.d, rel=0.02)
 
 
+def test_an_ellipsoids_parabola_warning_does_not_advise_a_shape_that_refuses_it(solve):
+    """-shape sphere has one radius and refuses -Rx/-Ry: an ellipsoid's parabola
+    warning says so instead of advising it."""
+    run = solve("-Rx", "0.5", "-Ry", "1", "-P", "0.03")
+    warning = next(x for x in run.stderr.splitlines() if "warning: d/R" in x)
+    assert "use -shape sphere" not in warning and "-shape sphere has one radius" in warning
+    assert "-shape sphere solves it" not in run.stdout
+    plain = next(x for x in solve("-R", "0.5", "-d", "0.05").stderr.splitlines() if "warning: d/R" in x)
+    assert "use -shape sphere" in plain
+
+
 @pytest.mark.parametrize("args,option", [
     (["-P", "0"], "-P"), (["-P", "-1"], "-P"), (["-P", "1e-3", "-d", "0.01"], "-P"),
     (["-P", "1e6"], "-P"),  # the depth would pass the radius

@@ -82,6 +82,11 @@ def test_fixed_point_reports_divergence_at_large_kpen(solve):
     s = run.summary
     assert s["status"] == "diverged" and s["iterations"] < 200
     assert s["kpen_critical"] < 1e4  # theory agrees that 1e4 is beyond the limit
+    # the line that says why names the penalty that contracts, and that one does
+    line = next(x for x in run.stderr.splitlines() if "the run ended diverged" in x)
+    kpen = float(line.split("contracts only below kpen = ")[1].split()[0])
+    assert kpen == pytest.approx(s["kpen_critical"], rel=1e-5)
+    assert solve("-method", "fixedpoint", "-kpen", repr(0.8 * kpen)).summary["status"] != "diverged"
 
 
 def test_plane_strain_satisfies_the_line_contact_relations(solve):
