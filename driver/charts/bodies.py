@@ -13,7 +13,8 @@ from driver.charts.common import Chart, need, save
 from driver.references.spence import dundurs_beta, equivalent_rigid, spence_path
 
 CAPTION = ("Two elastic bodies (-E1, -nu1, -R2), each a half-space of its own material (the indenter "
-           "meshed as the mirror image of the body's section), in contact along their relative displacement. Left: the force and the contact radius "
+           "meshed as the mirror image of the body's section), in contact along their relative displacement. "
+           "Left: the force and the contact radius "
            "against the approach d, all made dimensionless by Hertz's combined E* (1/E* = (1 - nu1^2)/E1 + "
            "(1 - nu^2)/E) and relative radius (1/R = 1/R1 + 1/R2), for identical spheres, dissimilar ones "
            "(a stiffer indenter on a body of twice its radius), a soft indenter, and Code_Aster's SSNV104 "
