@@ -41,18 +41,6 @@ def relative_radius(df: pd.DataFrame) -> pd.Series:
     return 1 / (1 / df["R"] + np.where(np.isfinite(df["R2"]), 1 / df["R2"], 0.0))
 
 
-def sneddon_sphere(d: np.ndarray, R: float) -> tuple[np.ndarray, np.ndarray]:
-    """The exact sphere's contact radius and F/E* at depth d (Sneddon): d = (a/2) ln((R+a)/(R-a)),
-    F/E* = ((a^2 + R^2) ln((R+a)/(R-a)) - 2aR)/2, by bisection on a."""
-    lo, hi = np.zeros_like(d), np.full_like(d, R * (1 - 1e-12))
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        below = mid / 2 * np.log((R + mid) / (R - mid)) < d
-        lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
-    a = 0.5 * (lo + hi)
-    return a, ((a**2 + R**2) * np.log((R + a) / (R - a)) - 2 * a * R) / 2
-
-
 def bodies(frame: pd.DataFrame, paths: pd.DataFrame, path: Path) -> Path:
     df = need(frame[frame["status"].isin(["converged", "inaccurate"])], "no bodies rows").copy()
     df["Estar"], df["Rrel"] = contact_modulus(df), relative_radius(df)
@@ -86,11 +74,10 @@ def bodies(frame: pd.DataFrame, paths: pd.DataFrame, path: Path) -> Path:
             est = caps["est_err_F" if name == "F" else "est_err_a"]
             middle.errorbar(a_over_r, 100 * (caps[column] / hertz - 1), yerr=200 * est, fmt=marker, color=color,
                             capsize=2, ms=6, label=f"FE {name} against Hertz's parabola")
-        d = np.linspace(caps["d_fe"].min() * 0.5, caps["d_fe"].max() * 1.1, 80)
-        a, force = sneddon_sphere(d, R)
-        middle.plot(a / R, 100 * (force / (4 / 3 * np.sqrt(R) * d**1.5) - 1), "-", color="#0072B2", lw=1,
+        # the runs' own reference at their depths (reference = sneddon: the exact sphere)
+        middle.plot(caps["a_hertz"] / R, 100 * (caps["F_hertz"] / hertz_F - 1), "-", color="#0072B2", lw=1,
                     label="Sneddon's exact sphere: F")
-        middle.plot(a / R, 100 * (a / np.sqrt(R * d) - 1), "-", color="#D55E00", lw=1,
+        middle.plot(caps["a_hertz"] / R, 100 * (caps["a_hertz"] / hertz_a - 1), "-", color="#D55E00", lw=1,
                     label="Sneddon's exact sphere: a")
     pair = df[df["variant"] == "SSNV104, exact caps"]
     for _, case in pair.iterrows():
