@@ -48,7 +48,7 @@ audit:                            ## the promise against the truth: 500 random 2
 	$(PYTHON) tests/audit.py --jobs $(JOBS)
 
 lint:                             ## FreeFEM compiles (every branch: dimension, order, formulation), ruff and mypy are clean
-	cd edp && for branch in "" "-DDIM=2 -DORDER=1" "-DDIM=2 -DMIXED=1" "-DDIM=2 -DMIXED=2" "-DDIM=2 -DBODIES=2" "-DDIM=2 -DORDER=1 -DBODIES=2" "-DDIM=3" "-DDIM=3 -DBODIES=2" "-DDIM=3 -DORDER=1" "-DDIM=3 -DMIXED=1" "-DDIM=3 -DMIXED=2"; do \
+	cd edp && for branch in "" "-DDIM=2 -DORDER=1" "-DDIM=2 -DMIXED=1" "-DDIM=2 -DMIXED=2" "-DDIM=2 -DBODIES=2" "-DDIM=2 -DORDER=1 -DBODIES=2" "-DDIM=2 -DPLASTIC=1" "-DDIM=2 -DORDER=1 -DPLASTIC=1" "-DDIM=3" "-DDIM=3 -DBODIES=2" "-DDIM=3 -DORDER=1" "-DDIM=3 -DMIXED=1" "-DDIM=3 -DMIXED=2"; do \
 	  FreeFem++ -jc -nw -v 0 hertz.edp $$branch > /dev/null || { echo "hertz.edp $$branch does not compile"; exit 1; }; done
 	FreeFem++ -jc -nw -v 0 tests/edp/thick_cylinder.edp > /dev/null || { echo "tests/edp/thick_cylinder.edp does not compile"; exit 1; }
 	$(PYTHON) -m ruff check driver tests bench setup.py

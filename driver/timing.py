@@ -40,6 +40,10 @@ FRICTION = "friction, sphere (-mu 0.3, 16 steps)"
 FRICTION_TIMES = 3  # the target: a frictional normal indentation at most 3 times the frictionless run
 TWO_BODIES = "two identical spheres (-E1 10)"
 TWO_BODIES_TIMES = 2  # the target: a two-body run at default options at most 2 times the rigid one
+PLASTIC_CYCLE = "plastic cycle, sphere (-Y 0.3 -unload 1, 10 + 10 steps)"
+ELASTIC_CYCLE = "elastic cycle, sphere (-unload 1, lagrange, 10 + 10 steps)"
+# the targets: a 20-step load-unload cycle within 3 s, and 2 times the elastic one
+PLASTIC_WALL, PLASTIC_TIMES = 3.0, 2
 CONFIGS = {
     DEFAULT: Case(),
     "seed command (-kpen 1e5)": Case.of(kpen=1e5),
@@ -64,6 +68,8 @@ CONFIGS = {
     FRICTION: Case.of(mu=0.3),
     TWO_BODIES: Case.of(E1=10.0),
     "two dissimilar spheres (-E1 30 -nu1 0.2 -R2 1, -P 0.01)": Case.of(E1=30.0, nu1=0.2, R2=1.0, P=0.01),
+    PLASTIC_CYCLE: Case.of(Y=0.3, unload=1),
+    ELASTIC_CYCLE: Case.of(unload=1, method="lagrange", steps=10),
     "full stick, sphere (-mu inf, 16 steps)": Case.of(mu=math.inf),
     "friction, cylinder (-mu 0.3, -P 0.01)": Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01, mu=0.3),
     "tangential, cylinder (-Q mu P/2, 16 + 16 steps)": Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01, mu=0.3,
@@ -254,6 +260,12 @@ def target_lines(table: pd.DataFrame, starts: pd.DataFrame) -> list[str]:
         two, one = by.loc[TWO_BODIES, "wall_median_s"], by.loc[DEFAULT, "wall_median_s"]
         line("two elastic bodies against the rigid indenter", two <= TWO_BODIES_TIMES * one,
              f"{two:.3f} s against {one:.3f} s (ratio {two / one:.2f})", f"at most {TWO_BODIES_TIMES} times")
+    if PLASTIC_CYCLE in by.index and ELASTIC_CYCLE in by.index:
+        plastic, elastic = by.loc[PLASTIC_CYCLE, "wall_median_s"], by.loc[ELASTIC_CYCLE, "wall_median_s"]
+        line("a plastic load-unload cycle, and against the same path elastic",
+             plastic <= PLASTIC_WALL and plastic <= PLASTIC_TIMES * elastic,
+             f"{plastic:.2f} s against {elastic:.2f} s (ratio {plastic / elastic:.2f})",
+             f"at most {PLASTIC_WALL:g} s and {PLASTIC_TIMES} times")
     if HERTZ_RUN in by.index and BARE_RUN in by.index:
         hertz, bare = by.loc[HERTZ_RUN, "wall_median_s"], by.loc[BARE_RUN, "wall_median_s"]
         line("hertz run against the bare FreeFEM command", hertz <= CLI_RATIO * bare + CLI_EXTRA,
