@@ -1,8 +1,8 @@
 """hertz curve: an indentation curve, P against h with the contact stiffness, hardness and
 reduced modulus, from one command (--d or --P START:STOP:N, and any other option of hertz run).
 
-The N cases run as a sweep of a study named `indentation` in --out DIR (its table
-indentation.csv, every column, and its cases' folders under runs/), resumably: the same
+The N cases run as a sweep of a study named `curve_cases` in --out DIR (its table
+curve_cases.csv, every column, and its cases' folders under runs/), resumably: the same
 command again runs only the missing points. curve.csv holds the curve sorted by h:
   h   depth (d_fe: the depth given, or found under -P)
   P   force (F_fe)
@@ -12,6 +12,8 @@ command again runs only the missing points. curve.csv holds the curve sorted by 
   H   hardness (mean pressure), P/A
   Er  reduced modulus, S sqrt(pi) / (2 sqrt(A)) (Sneddon's relation, as Oliver and Pharr use it)
 For an elastic body Er is E* = E/(1 - nu^2) at every depth; curve.png draws P, H and Er against h.
+With --Y each point is its own load path to its depth (the loading curve: the material
+remembers only its own path), S its unloading stiffness at that depth.
 """
 from __future__ import annotations
 
@@ -26,7 +28,7 @@ from driver.commands.common import add_solver_options, add_talk, add_timeout, po
 from driver.errors import HertzError, OptionError
 
 HELP = "an indentation curve: --d or --P START:STOP:N; writes curve.csv (h, P, S, a, A, H, Er) and curve.png"
-STUDY = "indentation"
+STUDY = "curve_cases"  # (the built-in study `indentation` is another)
 CSV, PNG = "curve.csv", "curve.png"
 COLUMNS = ["h", "P", "S", "a", "A", "H", "Er"]
 MAX_POINTS = 1000
