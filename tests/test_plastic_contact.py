@@ -43,8 +43,8 @@ def test_the_yield_constant_is_johnsons():
     assert zeta[axis_mises_over_p0(NU, zeta).argmax()] == pytest.approx(0.48, abs=0.01)
 
 
-# one load-unload cycle that yields in its fourth step (Y = 0.3: delta_y = 0.117 d)
-CYCLE = ("-Y", "0.3", "-unload", "1")
+# one load-unload cycle that yields in its fourth step (Y = 0.3: delta_y = 0.117 d), at n = 8 (4 s)
+CYCLE = ("-Y", "0.3", "-unload", "1", "-n", "8")
 
 
 @pytest.fixture(scope="module")
