@@ -79,6 +79,23 @@ def test_below_first_yield_the_run_is_the_elastic_one(solve):
     assert np.allclose(steps_p["P"], steps_e["P"], rtol=1e-7, atol=1e-14)
 
 
+def test_under_a_load_each_step_finds_its_depth(solve):
+    """-P: each step's depth by a secant on the load. Below first yield it is
+    the elastic run under the same loads (exact contact, its depth by Newton's
+    update) within 1e-6, every step's force the load to 1e-8."""
+    p0 = 1.3  # Hertz under P = 0.024
+    _, C = first_yield_depth(1.0)
+    plastic = solve("-Y", f"{1.25 * p0 / C}", "-P", "0.024", "-n", "8", "-steps", "8")
+    elastic = solve("-method", "lagrange", "-P", "0.024", "-n", "8", "-steps", "8")
+    assert plastic.exit_code == 0 and elastic.exit_code == 0, plastic.output + elastic.output
+    p, e = plastic.summary, elastic.summary
+    assert p["ep_max"] == 0 and p["F_fe"] == pytest.approx(0.024, rel=1e-8)
+    for column in ["d_fe", "a_fe", "S_fe"]:
+        assert p[column] == pytest.approx(e[column], rel=1e-6), column
+    steps = plastic.table("path")
+    assert np.allclose(steps["P"], 0.024 * (np.arange(1, 9) / 8) ** 3, rtol=1e-8)
+
+
 def test_the_first_plastic_step_brackets_first_yield(cycle):
     """The step before the first with plastic strain lies below delta_y, that
     step at or above it."""
@@ -125,7 +142,7 @@ def test_the_peak_pressure_is_reported_but_not_certified(cycle):
 
 def test_the_vtu_carries_the_plastic_strain_and_the_imprint(solve, tmp_path):
     vtk = tmp_path / "p.vtu"
-    run = solve("-Y", "0.3", "-n", "8", "-steps", "4", "-unload", "1", "-vtk", str(vtk))
+    run = solve("-Y", "0.3", "-n", "8", "-steps", "8", "-unload", "1", "-vtk", str(vtk))
     assert run.exit_code in (0, 5), run.output
     near = meshio.read(tmp_path / "p_near.vtu")
     ep = near.point_data["equivalent_plastic_strain"]
@@ -161,7 +178,8 @@ def test_oliver_pharr_on_an_elastic_run_returns_e_star(solve):
     (("-Y", "0"), "-Y"), (("-Y", "-1"), "-Y"), (("-Y", "nan"), "-Y"), (("-Y", "1", "-H", "-1"), "-H"),
     (("-H", "1"), "-H"), (("-Y", "1", "-method", "newton"), "-method"), (("-Y", "1", "-model", "3d"), "-Y"),
     (("-Y", "1", "-t", "0.05"), "-Y"), (("-Y", "1", "-d", "0.1"), "-d"), (("-Y", "1", "-mu", "0.3"), "-Y"),
-    (("-unload", "2"), "-unload"), (("-Y", "1", "-accuracy", "0.01"), "-accuracy"), (("-Y", "1", "-P", "0.01"), "-Y"),
+    (("-unload", "2"), "-unload"), (("-Y", "1", "-accuracy", "0.01"), "-accuracy"), (("-Y", "1", "-P", "0.5"), "-P"),
+    (("-Y", "1", "-steps", "6"), "-steps"),
 ])
 def test_bad_plastic_input_is_refused_with_one_line(solve, args, names):
     run = solve(*args, "-check", "1", out=False)
