@@ -36,7 +36,7 @@ def first_yield_depth(Y: float, nu: float = NU) -> tuple[float, float]:
 
 
 def test_the_yield_constant_is_johnsons():
-    """C(0.3) = 1.60 (1.613), at 0.48 a below the surface (the issue's figures)."""
+    """C(0.3) = 1.60 (1.613), at 0.48 a below the surface (Johnson's figures)."""
     _, C = first_yield_depth(1.0)
     zeta = np.linspace(1e-4, 3, 300001)
     assert C == pytest.approx(1.60, abs=0.02)   # 1.613: Johnson rounds it
