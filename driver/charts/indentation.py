@@ -9,6 +9,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 
+from driver.charts.bodies import contact_modulus
 from driver.charts.common import Chart, need, save
 
 CAPTION = ("Elastic-plastic indentation (J2, perfectly plastic: -Y, -H 0) along a load path of 10 steps to the "
@@ -38,7 +39,7 @@ def _label(row: pd.Series) -> str:
 
 def indentation(frame: pd.DataFrame, paths: pd.DataFrame, path: Path) -> Path:
     df = need(frame[frame["status"].isin(["converged", "inaccurate"])], "no indentation rows").copy()
-    df["label"] = df.apply(_label, axis=1)
+    df["Estar"], df["label"] = contact_modulus(df), df.apply(_label, axis=1)
     df = df.sort_values(["shape", "Y"], ascending=[False, False])
     fig, (loops, regimes, op) = plt.subplots(1, 3, figsize=(17, 5.4))
     for k, (_, row) in enumerate(df.iterrows()):
@@ -85,9 +86,4 @@ def indentation(frame: pd.DataFrame, paths: pd.DataFrame, path: Path) -> Path:
     return save(fig, path)
 
 
-def _with_modulus(frame: pd.DataFrame) -> pd.DataFrame:
-    return frame.assign(Estar=frame["E"] / (1 - frame["nu"] ** 2))
-
-
-CHARTS = {"indentation": Chart(lambda frame, paths, path: indentation(_with_modulus(frame), paths, path),
-                               CAPTION, kept=("path.csv",))}
+CHARTS = {"indentation": Chart(indentation, CAPTION, kept=("path.csv",))}
