@@ -133,7 +133,7 @@ def test_path_rows_follow_the_run_and_end_at_its_summary(solve):
     run = solve("-mu", "0.2", "-P", "0.03")
     s, rows = run.summary, run.table("path")
     assert list(rows.columns) == ["step", "d", "P", "Q", "dt", "a", "c", "S", "p0", "est_err", "status", "pm",
-                                  "ep_max", "plastic_reach"]
+                                  "ep_max", "plastic_reach", "neck"]
     assert rows["ep_max"].isna().all() and rows["plastic_reach"].isna().all()   # an elastic body
     assert len(rows) == s["steps"] == 16
     assert rows["P"].iloc[-1] == pytest.approx(0.03, rel=1e-9)
