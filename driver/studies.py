@@ -395,6 +395,15 @@ def indentation_study(quick: bool) -> list[Case]:
     return cases
 
 
+def adhesion_study(quick: bool) -> list[Case]:
+    """Maugis-Dugdale adhesion of the default sphere (w = 0.05), from the load 0.05 to
+    separation (-pulloff 1, load control: the pull-off is the least force), for Dugdale
+    stresses giving Tabor parameters 0.15, 0.49, 1.2, 2.5 and 4.9 (-sigma0 0.3 to 10). The
+    quick subset: lambda = 2.5."""
+    sigmas = [5.0] if quick else [0.3, 1.0, 2.5, 5.0, 10.0]
+    return labelled(grid(Case.of(w=0.05, P=0.05, pulloff=1), sigma0=sigmas), lambda c: f"sigma0 = {c.get('sigma0')}")
+
+
 STUDIES = {s.name: s for s in [
     Study("kpen", kpen_study, charts=("penalty",)),
     Study("mesh", mesh_study, charts=("mesh",)),
@@ -413,6 +422,7 @@ STUDIES = {s.name: s for s in [
     Study("friction", friction_study, keep=("path.csv",), charts=("friction",)),
     Study("bodies", bodies_study, keep=("path.csv",), charts=("bodies",)),
     Study("indentation", indentation_study, keep=("path.csv",), charts=("indentation",)),
+    Study("adhesion", adhesion_study, keep=("path.csv",), charts=("adhesion",)),
 ]}
 # the charts that read every study's rows, first in the report
 SUMMARY_CHARTS = ("accuracy_vs_speed", "effectivity", "zigzag")

@@ -44,6 +44,8 @@ PLASTIC_CYCLE = "plastic cycle, sphere (-Y 0.3 -unload 1, 10 + 10 steps)"
 ELASTIC_CYCLE = "elastic cycle, sphere (-unload 1, lagrange, 10 + 10 steps)"
 # the targets: a 20-step load-unload cycle within 3 s, and 2 times the elastic one
 PLASTIC_WALL, PLASTIC_TIMES = 3.0, 2
+ADHESION_CURVE = "adhesive curve to separation, sphere (-w 0.05 -sigma0 5 -P 0.05 -pulloff 1)"
+ADHESION_WALL = 4.0  # the target: an approach-and-retract curve at default options within 4 s
 CONFIGS = {
     DEFAULT: Case(),
     "seed command (-kpen 1e5)": Case.of(kpen=1e5),
@@ -70,6 +72,8 @@ CONFIGS = {
     "two dissimilar spheres (-E1 30 -nu1 0.2 -R2 1, -P 0.01)": Case.of(E1=30.0, nu1=0.2, R2=1.0, P=0.01),
     PLASTIC_CYCLE: Case.of(Y=0.3, unload=1),
     ELASTIC_CYCLE: Case.of(unload=1, method="lagrange", steps=10),
+    "adhesive sphere at the depth (-w 0.05 -sigma0 5)": Case.of(w=0.05, sigma0=5.0),
+    ADHESION_CURVE: Case.of(w=0.05, sigma0=5.0, P=0.05, pulloff=1),
     "full stick, sphere (-mu inf, 16 steps)": Case.of(mu=math.inf),
     "friction, cylinder (-mu 0.3, -P 0.01)": Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01, mu=0.3),
     "tangential, cylinder (-Q mu P/2, 16 + 16 steps)": Case.of(model="plane", Rx=0.5, Ry=math.inf, P=0.01, mu=0.3,
@@ -266,6 +270,10 @@ def target_lines(table: pd.DataFrame, starts: pd.DataFrame) -> list[str]:
              plastic <= PLASTIC_WALL and plastic <= PLASTIC_TIMES * elastic,
              f"{plastic:.2f} s against {elastic:.2f} s (ratio {plastic / elastic:.2f})",
              f"at most {PLASTIC_WALL:g} s and {PLASTIC_TIMES} times")
+    if ADHESION_CURVE in by.index:
+        curve = by.loc[ADHESION_CURVE, "wall_median_s"]
+        line("an adhesive force curve to separation (its pull-off and zero-load levels)", curve <= ADHESION_WALL,
+             f"{curve:.2f} s", f"at most {ADHESION_WALL:g} s")
     if HERTZ_RUN in by.index and BARE_RUN in by.index:
         hertz, bare = by.loc[HERTZ_RUN, "wall_median_s"], by.loc[BARE_RUN, "wall_median_s"]
         line("hertz run against the bare FreeFEM command", hertz <= CLI_RATIO * bare + CLI_EXTRA,

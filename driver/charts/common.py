@@ -81,6 +81,9 @@ def sphere_cases(tables: dict[str, pd.DataFrame]) -> pd.DataFrame:
         sphere &= rows["shape"].fillna("parabola").eq("parabola")
     if "t" in rows:
         sphere &= rows["t"].isna()
+    # (an adhesive contact's force is Maugis's, not Hertz's: the adhesion chart)
+    if "w" in rows:
+        sphere &= ~(rows["w"] > 0)
     sphere &= rows["Rx"] == rows["Ry"]
     rows = rows[(rows["status"] == "converged") & sphere].drop_duplicates("case_id")
     return rows.assign(max_err=max_error(rows))
