@@ -30,9 +30,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent))
 from promise import BAR, ESTIMATE_SHARE  # noqa: E402  (what exit 0 promises)
 
 from driver import freefem  # noqa: E402
+from driver.references.maugis import Maugis  # noqa: E402  (adhesion's, apart from the solver)
 
 import hertz_reference as ref  # noqa: E402  (the tests' own references)
-from driver.references.maugis import Maugis  # noqa: E402  (adhesion's, apart from the solver)
 
 SILENT_FLOOR = 1e-3     # below this a run's error is not held against its estimate
 FALSE_ALARM = 0.3 * BAR
