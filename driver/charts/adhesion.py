@@ -56,7 +56,7 @@ def adhesion(frame: pd.DataFrame, paths: pd.DataFrame, path: Path) -> Path:
               title="Contact radius and load")
     radii.legend(fontsize=8)
     first = df.iloc[0]
-    lams = np.geomspace(0.05, 50, 40)
+    lams = np.geomspace(0.05, 50, 20)
     sigmas = lams / Maugis(first["Estar"], first["R"], first["w"], 1.0).lam
     exact = [-Maugis(first["Estar"], first["R"], first["w"], s).pulloff("load")["P"] / (np.pi * first["w"] * first["R"])
              for s in sigmas]

@@ -88,7 +88,7 @@ class Maugis:
             if not grow.any():
                 break
             hi = np.where(grow, 2 * hi, hi)
-        for _ in range(200):
+        for _ in range(64):           # (2^-64 of the bracket: below rounding)
             mid = 0.5 * (lo + hi)
             below = lhs(mid) < 0
             lo = np.where(below, mid, lo)
@@ -115,7 +115,7 @@ class Maugis:
         """The state on [lo, hi] in a (the stable side) where key equals value: bisection."""
         f = lambda a: self.states(a)[key][0] - value  # noqa: E731
         flo = f(lo)
-        for _ in range(200):
+        for _ in range(80):
             mid = 0.5 * (lo + hi)
             fm = f(mid)
             if (fm > 0) == (flo > 0):
@@ -127,7 +127,7 @@ class Maugis:
     def _stable_start(self, key: str) -> float:
         """The radius past the least of key (the curve's stable side begins there)."""
         La = self.units[0]
-        a = np.geomspace(1e-4 * La, 20 * La, 4000)
+        a = np.geomspace(1e-4 * La, 20 * La, 2000)
         return float(a[np.argmin(self.states(a)[key])])
 
     def at_depth(self, d: float) -> dict:
@@ -156,16 +156,17 @@ class Maugis:
         flagged 'at_end'."""
         key = "P" if control == "load" else "d"
         La = self.units[0]
-        a = np.geomspace(1e-4 * La, 20 * La, 4000)
+        a = np.geomspace(1e-4 * La, 20 * La, 2000)
         values = self.states(a)[key]
         i = int(np.argmin(values))
         if i == 0:
             return {**{k: v[0] for k, v in self.states(a[0]).items()}, "at_end": True}
         lo, hi = a[i - 1], a[min(i + 1, len(a) - 1)]
         g = (np.sqrt(5) - 1) / 2
-        for _ in range(120):
+        for _ in range(70):           # (0.618^70 of the bracket: below rounding)
             x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
-            if self.states(x1)[key][0] < self.states(x2)[key][0]:
+            v1, v2 = self.states(np.array([x1, x2]))[key]
+            if v1 < v2:
                 hi = x2
             else:
                 lo = x1
