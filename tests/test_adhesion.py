@@ -162,6 +162,16 @@ def test_the_depth_controlled_pulloffs_estimate_spans_its_meshes(solve):
     assert coarse.summary["est_err_pulloff"] >= spread
 
 
+def test_a_contact_held_by_its_traction_alone_is_solved(solve):
+    """A depth of 1e-6 (a range 1e4 times the depth: the contact is JKR's zero-load one) within
+    0.01% of Maugis, in about a second: the first level's scale follows the neck's reach."""
+    run = solve("-w", str(W), "-sigma0", "5", "-d", "1e-6", timeout=60)
+    assert run.exit_code == 0, run.output
+    s = run.summary
+    ref = Maugis(ESTAR, R, W, 5.0).at_depth(1e-6)
+    assert rel(s["F_fe"], ref["P"]) < 1e-3 and rel(s["a_fe"], ref["a"]) < 1e-3
+
+
 def test_a_narrow_zone_needs_its_own_limit(solve):
     """-pulloff beyond lambda = 5 is refused with one line naming -sigma0's bound."""
     run = solve("-w", str(W), "-sigma0", "20", "-pulloff", "1", out=False)
@@ -179,6 +189,8 @@ def test_a_narrow_zone_needs_its_own_limit(solve):
     (("-w", "0.1", "-sigma0", "1", "-method", "newton"), "-method lagrange"),
     (("-w", "0.1", "-sigma0", "1", "-Y", "1"), "not built yet"),
     (("-pulloff", "1"), "give -w and -sigma0"),
+    (("-w", "1e300", "-sigma0", "1"), "the interaction's range, must be at most R"),
+    (("-w", "0.05", "-sigma0", "1e300"), "above 100"),
 ])
 def test_bad_adhesive_input_is_one_line(solve, args, phrase):
     run = solve(*args, out=False)
