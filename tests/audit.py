@@ -49,7 +49,7 @@ def draw_adhesive(rng: random.Random) -> list[str]:
     w = 10 ** rng.uniform(-1, 0.5) * ref.sphere(E, nu, R, d).F / (math.pi * R)
     pulloff = rng.random() < 0.3
     lam = 10 ** rng.uniform(-1, math.log10(5 if pulloff else 10))
-    sigma0 = lam / 2 * (math.pi * w * (4 * Es / 3) ** 2 / R) ** (1 / 3)
+    sigma0 = lam / Maugis(Es, R, w, 1.0).lam   # (lambda grows as sigma0)
     args = ["-E", repr(E), "-nu", repr(nu), "-R", repr(R), "-w", repr(w), "-sigma0", repr(sigma0),
             "-n", str(rng.choice([12, 16, 24]))]
     maugis = Maugis(Es, R, w, sigma0)

@@ -28,6 +28,8 @@ def test_maugis_reaches_jkr_and_dmt():
     assert jkr.lam > 29
     s = jkr.at_load(0.05)
     assert rel(s["a"], jkr_radius(0.05, ESTAR, R, W)) < 3e-3
+    # a pull above the pull-off has two states: the stable one is JKR's larger radius
+    assert rel(jkr.at_load(-PWR)["a"], jkr_radius(-PWR, ESTAR, R, W)) < 3e-3
     assert rel(s["d"], jkr_depth(s["a"], ESTAR, R, W)) < 3e-3
     assert rel(jkr.zero_load()["a"], jkr_zero_load_radius(ESTAR, R, W)) < 3e-3
     assert rel(jkr.pulloff("load")["P"], -1.5 * PWR) < 3e-3

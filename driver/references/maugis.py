@@ -124,27 +124,24 @@ class Maugis:
                 hi = mid
         return {k: v[0] for k, v in self.states(0.5 * (lo + hi)).items()}
 
-    def _stable_start(self, key: str) -> float:
-        """The radius past the least of key (the curve's stable side begins there)."""
+    def _stable(self, key: str, value: float) -> dict:
+        """The stable state where key ('d' or 'P') equals value: on the curve's side past
+        the least of key (the largest contact with that value), by bisection."""
         La = self.units[0]
         a = np.geomspace(1e-4 * La, 20 * La, 2000)
-        return float(a[np.argmin(self.states(a)[key])])
+        lo = float(a[np.argmin(self.states(a)[key])])
+        hi = 2 * lo
+        while self.states(hi)[key][0] < value:
+            hi *= 2
+        return self._root(key, value, lo, hi)
 
     def at_depth(self, d: float) -> dict:
-        """The stable state at the depth d (the largest contact with that depth)."""
-        lo = self._stable_start("d")
-        hi = 2 * lo
-        while self.states(hi)["d"][0] < d:
-            hi *= 2
-        return self._root("d", d, lo, hi)
+        """The stable state at the depth d."""
+        return self._stable("d", d)
 
     def at_load(self, P: float) -> dict:
         """The stable state under the load P."""
-        lo = self._stable_start("P")
-        hi = 2 * lo
-        while self.states(hi)["P"][0] < P:
-            hi *= 2
-        return self._root("P", P, lo, hi)
+        return self._stable("P", P)
 
     def zero_load(self) -> dict:
         return self.at_load(0.0)
