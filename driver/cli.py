@@ -37,14 +37,18 @@ def build_parser(argv: list[str]) -> Parser:
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
+    interrupted = "interrupted"  # a command that keeps work says what it kept (its INTERRUPTED_LINE)
     try:
+        if argv and argv[0] in NAMES:
+            command = importlib.import_module(f"driver.commands.{argv[0]}")
+            interrupted = getattr(command, "INTERRUPTED_LINE", interrupted)
         args = build_parser(argv).parse_args(argv)
         return args.handle(args)
     except HertzError as exc:
         print(error_line(str(exc)), file=sys.stderr)
         return 2
     except KeyboardInterrupt:
-        print("interrupted: finished cases are kept; run the same command to resume", file=sys.stderr)
+        print(interrupted, file=sys.stderr)
         return INTERRUPTED
     except BrokenPipeError:
         # the reader went away (hertz run | head): not an error of the run's

@@ -27,6 +27,7 @@ from driver.errors import SOLVER_ERROR, HertzError
 from driver.processes import MARKER, PID_FILE, RUNNING, CaseLock, kill_case, launcher, reap_adopted, reap_leftover
 
 LOG_FILE = "freefem.log"
+MEMORY = "out-of-memory"  # hertz.edp's status for a mesh refused for its memory (no summary.csv)
 # everything hertz.edp may write into -out (its CSV tables, and VTK files a user
 # pointed there): removed before a run, so no earlier run's file passes for this one's
 OUTPUT_SUFFIXES = (".csv", ".vtu")
@@ -146,6 +147,9 @@ def _status(exit_code: int, summary: dict | None, why: str) -> tuple[str, str]:
     if exit_code < 0:
         return "failed", f"killed by signal {-exit_code}"
     if summary is None:
+        # a mesh that would not fit is refused before it is built: no files, its own code
+        if exit_code == freefem.exit_code(MEMORY):
+            return MEMORY, ""
         return "failed", why or f"exit code {exit_code} without summary.csv"
     status = str(summary.get("status"))
     table = freefem.exits()
@@ -285,7 +289,7 @@ def _run(case: Case, workdir: Path, timeout: float, columns: list[str], extra: t
     status, error = _status(proc.returncode, summary, why)
     if summary is not None:
         out.update(summary)
-    if status == "failed":
+    if status in ("failed", MEMORY):
         error = solver_error(log_path) or error
         if summary is None and not error.startswith("hertz.edp"):
             error = f"{error}; last output: {_last_output(log_path)}"

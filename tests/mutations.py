@@ -26,6 +26,27 @@ class Mutation:
 
 
 MUTATIONS = [
+    # resources (edp/lib/solve/memory.idp, lib/profile.idp, hertz.edp's -check; driver/cli.py)
+    Mutation("memory: a level checked against a machine of unlimited memory", "edp/lib/solve/memory.idp",
+             "func bool fitsMemory(real dofs) { return !(levelMemoryMB(dofs) > memoryHaveMB); }",
+             "func bool fitsMemory(real dofs) { return true; }",
+             ["tests/test_reliability.py::test_a_mesh_beyond_the_memory_is_its_own_status_before_meshing"]),
+    Mutation("memory: the address-space limit not read", "edp/lib/solve/memory.idp",
+             '  if (room < have) { have = room; name = "the address-space limit (ulimit -v)"; }', "",
+             ["tests/test_reliability.py::test_accuracy_stops_at_the_memory_and_says_so"]),
+    Mutation("memory: the driver reads a refused mesh as a failed case", "driver/run.py",
+             "        if exit_code == freefem.exit_code(MEMORY):", "        if False:",
+             ["tests/test_cli.py::test_a_case_beyond_the_memory_is_its_own_status_row_and_code"]),
+    Mutation("profile: a table of any length read", "edp/lib/profile.idp",
+             "    if (rows == maxProfileRows) {", "    if (false) {",
+             ["tests/test_shapes.py::test_a_table_is_bounded_before_it_is_read"]),
+    Mutation("-check solves the coarse level whatever the options", "edp/hertz.edp",
+             '(!checkOnly || given("-kpen") || given("-gamma"))', "(true)",
+             ["tests/test_options.py::test_check_is_quick_on_the_thinnest_film"]),
+    Mutation("Ctrl-C: every command offers to resume", "driver/cli.py",
+             'interrupted = getattr(command, "INTERRUPTED_LINE", interrupted)',
+             'interrupted = "interrupted: finished cases are kept; run the same command to resume"',
+             ["tests/test_cli.py::test_ctrl_c_says_what_the_command_kept"]),
     Mutation("an ellipsoid advised to use -shape sphere", "edp/lib/solve/judge.idp",
              '            : (ellipsoid ? " (the ellipsoid', '            : (false ? " (the ellipsoid',
              ["tests/test_load.py::test_an_ellipsoids_parabola_warning_does_not_advise_a_shape_that_refuses_it"]),

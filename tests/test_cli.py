@@ -1,9 +1,13 @@
 """driver/cli.py and driver/commands/: every command a user types works, or is one clear line and exit 2;
 no input loses data, escapes its folder or hangs."""
 import http.server
+import importlib
 import json
 import os
+import re
 import shutil
+import subprocess
+import sys
 import threading
 import time
 
@@ -12,7 +16,7 @@ import pytest
 import driver
 from driver import studytable
 
-from conftest import cli, hertz, one_error_line
+from conftest import REPO, checkout_first, cli, hertz, one_error_line
 
 
 def test_version():
@@ -97,6 +101,31 @@ def test_run_out_refuses_a_folder_of_someone_elses_files(tmp_path):
 def test_run_passes_the_solvers_exit_code(tmp_path):
     proc = cli("run", "--n", "4", "--L", "50", "--farfield", "clamped", "--results", str(tmp_path))
     assert proc.returncode == 5 and "status                    inaccurate" in proc.stdout
+
+
+def test_a_case_beyond_the_memory_is_its_own_status_row_and_code(tmp_path):
+    # under 1 GB of address space, n = 200 (992 MB measured) died of a segfault: a "failed" row
+    proc = subprocess.run(["bash", "-c", f"ulimit -v 1000000; exec {sys.executable} -m driver run --n 200 "
+                           f"--results {tmp_path}"], cwd=REPO, capture_output=True, text=True,
+                          env=checkout_first(dict(os.environ)), timeout=120)
+    assert proc.returncode == 6, proc.stdout[-400:] + proc.stderr
+    assert re.search(r"^status +out-of-memory$", proc.stdout, re.M), proc.stdout
+    assert proc.stderr.strip().splitlines()[-1].startswith("hertz.edp: error: out of memory: -n 200")
+
+
+@pytest.mark.parametrize("command,says", [("run", "before its answer"), ("report", "whole"),
+                                          ("sweep", "run the same command to resume")])
+def test_ctrl_c_says_what_the_command_kept(monkeypatch, command, says):
+    module = importlib.import_module(f"driver.commands.{command}")
+
+    def interrupted(args):
+        raise KeyboardInterrupt
+    monkeypatch.setattr(module, "handle", interrupted)
+    args = {"run": ["--n", "4"], "report": [], "sweep": ["mesh"]}[command]
+    proc = hertz(command, *args)
+    lines = proc.stderr.strip().splitlines()
+    assert proc.returncode == 130 and len(lines) == 1 and lines[0].startswith("interrupted: "), proc.stderr
+    assert says in proc.stderr and (command == "sweep") == ("resume" in proc.stderr), proc.stderr
 
 
 def test_run_help_lists_hertz_edp_options():

@@ -3,6 +3,7 @@ import csv
 import io
 import re
 import subprocess
+import time
 
 import pytest
 
@@ -91,6 +92,13 @@ def test_check_validates_without_solving(solve):
     ok = solve("-check", "1", "-kpen", "1e5", out=False)
     assert ok.exit_code == 0 and "options ok" in ok.stdout and "Maximum pressure" not in ok.stdout
     assert solve("-check", "1", "-kpen", "1e15", out=False).exit_code == 2
+
+
+def test_check_is_quick_on_the_thinnest_film(solve):
+    # its coarse level alone took 21 s: -check solves only for a penalty's range
+    start = time.perf_counter()
+    run = solve("-t", "7.1e-5", "-E2", "10", "-check", "1", out=False)
+    assert run.exit_code == 0 and "options ok" in run.stdout and time.perf_counter() - start < 3, run.output
 
 
 def test_a_plain_run_prints_no_freefem_trace_on_success():

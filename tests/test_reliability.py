@@ -62,6 +62,33 @@ def test_a_mesh_beyond_maxdof_is_refused_before_meshing(solve):
     assert solve("-n", "32", "-maxdof", "1e4", "-check", "1").exit_code == 2
 
 
+def run_memory_limited(args: list[str], limit_mb: int, out) -> subprocess.CompletedProcess:
+    """hertz.edp under an address-space limit (ulimit -v), as a shared machine or a container sets one."""
+    cmd = " ".join(f"'{a}'" for a in freefem.command(args + ["-out", str(out)]))
+    return subprocess.run(["bash", "-c", f"ulimit -v {limit_mb * 1024}; exec {cmd}"],
+                          capture_output=True, text=True, env=freefem.freefem_env(), timeout=300)
+
+
+def test_a_mesh_beyond_the_memory_is_its_own_status_before_meshing(tmp_path):
+    # n = 200 peaks at 992 MB (measured): under 900 MB it died of a segfault
+    start = time.perf_counter()
+    run = run_memory_limited(["-n", "200"], 900, tmp_path / "big")
+    assert run.returncode == freefem.exit_code("out-of-memory") == 6, run.stdout[-500:] + run.stderr
+    line = run.stderr.strip()
+    assert line.count("\n") == 0 and "out of memory" in line and "ulimit -v" in line and "-n 200" in line
+    assert time.perf_counter() - start < 5 and not any((tmp_path / "big").iterdir())  # nothing written
+    # a mesh that fits runs under the same limit (n = 100 peaks at 249 MB)
+    fits = run_memory_limited(["-n", "100"], 900, tmp_path / "fits")
+    assert fits.returncode == 0 and "out of memory" not in fits.stderr
+
+
+def test_accuracy_stops_at_the_memory_and_says_so(tmp_path):
+    # P1 misses 1e-4 at n = 64; n = 128 needs about 440 MB by the model
+    run = run_memory_limited(["-accuracy", "1e-4", "-order", "1"], 450, tmp_path)
+    assert run.returncode == 5, run.stdout[-500:] + run.stderr
+    assert "stopped by the memory" in run.stderr and "ulimit -v" in run.stderr
+
+
 def test_a_converged_run_far_from_its_estimate_is_inaccurate(solve):
     run = solve("-n", "4", "-L", "20", "-farfield", "clamped")  # the clamped boundary alone costs 5%
     assert run.exit_code == 5

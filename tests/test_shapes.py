@@ -2,6 +2,7 @@
 hertz_reference.py by the method of dimensionality reduction (the solver uses Sneddon's
 integrals): the exact sphere, cones, power laws, the flat punch and a tabulated profile."""
 import math
+import time
 
 import numpy as np
 import pytest
@@ -299,6 +300,24 @@ def test_bad_profiles_are_refused_with_the_reason(solve, tmp_path, case):
     run = solve("-shape", "table", "-profile", tables[case], "-d", "0.02")
     errors = run.stderr.strip().splitlines()
     assert run.exit_code == 2 and len(errors) == 1 and "-profile" in errors[0], run.output
+
+
+def test_a_table_is_bounded_before_it_is_read(solve, tmp_path):
+    # the reader takes about 0.5 ms a row: a million rows took minutes, -check included
+    r = np.linspace(0, 0.4, 10001)
+    rows = solve("-shape", "table", "-profile", write_profile(tmp_path / "rows.csv", r, r * r), "-check", "1")
+    errors = rows.stderr.strip().splitlines()
+    assert rows.exit_code == 2 and len(errors) == 1 and "more than 10000 rows" in errors[0], rows.output
+    big = tmp_path / "big.csv"
+    big.write_text("0,0\n" + "1" * 1_000_001 + ",1\n")
+    start = time.perf_counter()
+    run = solve("-shape", "table", "-profile", str(big), "-check", "1")
+    errors = run.stderr.strip().splitlines()
+    assert run.exit_code == 2 and len(errors) == 1 and "above 1000000 bytes" in errors[0], run.output
+    assert time.perf_counter() - start < 5
+    # the largest table it reads is read
+    ok = solve("-shape", "table", "-profile", write_profile(tmp_path / "ok.csv", r[:-1], r[:-1] ** 2), "-check", "1")
+    assert ok.exit_code == 0 and "options ok" in ok.stdout, ok.output
 
 
 @pytest.mark.parametrize("args,target", [(("-shape", "sphere", "-d", "0.05"), "0.002"),

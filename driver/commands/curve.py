@@ -28,6 +28,7 @@ from driver.commands.common import add_solver_options, add_talk, add_timeout, po
 from driver.errors import HertzError, OptionError
 
 HELP = "an indentation curve: --d or --P START:STOP:N; writes curve.csv (h, P, S, a, A, H, Er) and curve.png"
+INTERRUPTED_LINE = "interrupted: finished points are kept; run the same command to resume"
 STUDY = "curve_cases"  # (the built-in study `indentation` is another)
 CSV, PNG = "curve.csv", "curve.png"
 COLUMNS = ["h", "P", "S", "a", "A", "H", "Er"]

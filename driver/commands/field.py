@@ -7,6 +7,7 @@ from driver.commands.common import add_results, shown
 from driver.errors import SetupError
 
 HELP = "render the seed case's von Mises field to results/field.png (pyvista)"
+INTERRUPTED_LINE = "interrupted: the field picture is whole, the new one or the earlier one"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:

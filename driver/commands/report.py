@@ -7,6 +7,7 @@ import sys
 from driver.commands.common import add_results, shown
 
 HELP = "charts and REPORT.md from the study tables (reads CSV only)"
+INTERRUPTED_LINE = "interrupted: each chart and REPORT.md is whole, the new one or the earlier one"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:

@@ -11,6 +11,7 @@ from driver.commands.common import add_results, add_solver_options, add_talk, ad
 from driver.errors import error_line
 
 HELP = "run one case; print its row (every hertz.edp option is --name)"
+INTERRUPTED_LINE = "interrupted: the case was stopped, its solver with it, before its answer"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -28,7 +29,7 @@ def say(line: str) -> None:
 
 def handle(args: argparse.Namespace) -> int:
     from driver.api import solve_case
-    from driver.run import LOG_FILE, echoing, solver_warnings
+    from driver.run import LOG_FILE, MEMORY, echoing, solver_warnings
     with echoing(say) if args.verbose else contextlib.nullcontext():
         result = solve_case(solver_values(args), args.timeout, args.results, prefix="--")
     clean = {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in result.row.items()}
@@ -45,7 +46,7 @@ def handle(args: argparse.Namespace) -> int:
             for warning in solver_warnings(result.files / LOG_FILE):
                 say(warning)
         say(f"files: {shown(result.files)}")
-    if result.status == "failed" and result.error:
+    if result.status in ("failed", MEMORY) and result.error:
         say(error_line(result.error))
     return result.exit_code
 

@@ -10,6 +10,7 @@ from driver import layout
 from driver.commands.common import add_results, add_timeout, positive, shown
 
 HELP = "run named studies or a spec file, resumably"
+INTERRUPTED_LINE = "interrupted: finished cases are kept; run the same command to resume"
 
 
 def _scheduler(text: str) -> str:
