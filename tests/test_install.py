@@ -2,8 +2,11 @@
 the wheel carries the solver scripts (setup.py copies edp/ into the package)."""
 import json
 import os
+import shutil
 import subprocess
 import sys
+import tempfile
+from pathlib import Path
 
 import pytest
 
@@ -53,3 +56,31 @@ def test_solve_uses_the_solver_scripts_shipped_in_the_package(venv, tmp_path):
     assert package.startswith(str(venv)) and edp == str(venv / "lib" / f"python{sys.version_info.major}."
                                                       f"{sys.version_info.minor}" / "site-packages" / "driver" / "edp")
     assert version == driver.__version__ and status == "converged" and files.startswith(str(tmp_path))
+
+
+def test_a_read_only_install_builds_the_3d_plugin_in_the_users_cache(tmp_path):
+    # a system install, a container or a shared image: the package folder takes no file. The
+    # plugin was built into it at run time, and there every 3D run exited 2 blaming g++
+    base = Path(tempfile.mkdtemp(dir="/tmp", prefix="hertz-ro-"))  # pytest's folders are root's alone
+    try:
+        base.chmod(0o755)
+        package = base / "package"
+        copy_tracked(package)
+        cache = base / "user"
+        cache.mkdir()
+        script = f"cd {cache} && exec FreeFem++ -nw -v 0 {package}/edp/hertz.edp -model 3d -n 4 -out {cache}/out"
+        env = dict(os.environ, HOME=str(cache), XDG_CACHE_HOME=str(cache / "cache"))
+        if os.geteuid() == 0:  # root writes through any mode: run as nobody, who may not write there
+            os.chown(cache, 65534, 65534)
+            command = ["setpriv", "--reuid", "65534", "--regid", "65534", "--clear-groups", "sh", "-c", script]
+        else:
+            subprocess.run(["chmod", "-R", "a-w", str(package)], check=True)
+            command = ["sh", "-c", script]
+        proc = subprocess.run(command, capture_output=True, text=True, env=env, timeout=300)
+        assert proc.returncode in (0, 5), proc.stdout[-1500:] + proc.stderr  # n = 4 may be inaccurate
+        assert (cache / "out" / "summary.csv").is_file()
+        assert not list((package / "edp" / "plugin").glob("*.so"))  # nothing written into the package
+        assert len(list((cache / "cache" / "hertz-contact").glob("plugin-*/plugin/surfaceschur.so"))) == 1
+    finally:
+        subprocess.run(["chmod", "-R", "u+w", str(base)], check=False)
+        shutil.rmtree(base, ignore_errors=True)
