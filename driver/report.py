@@ -109,7 +109,7 @@ def environment(results_dir: Path) -> list[str]:
     except (OSError, ValueError):
         env = pd.DataFrame()  # an unreadable record only costs the report its sweep line
     if len(env):
-        lines.append("Sweep: " + ", ".join(f"{k} {v}" for k, v in env.astype(str).iloc[0].items()) + ".")
+        lines.append("Sweep (the newest): " + ", ".join(f"{k} {v}" for k, v in env.astype(str).iloc[-1].items()) + ".")
     lines.append(f"Report: drawn with Python {platform.python_version()}, pandas {pd.__version__}, "
                  f"numpy {np.__version__}, matplotlib {matplotlib.__version__}.")
     return lines

@@ -197,7 +197,7 @@ def run_studies(jobs_list: list[Job], results_dir: Path, jobs: int, timeout: flo
                 ran = _run_all(job.study, todo, path, columns, layout.work_root(results_dir, job.study),
                                executor, timeout, bar, job.repeats) if executor else 0
                 if ran:
-                    record_environment(results_dir)
+                    record_environment(results_dir, job.study)
                     # reruns landed: their cases' earlier rows go to stale/
                     for message in studytable.prepare(path, columns, freefem.edp_hash())[1]:
                         say(message)
@@ -293,13 +293,18 @@ def _version(packages: list[str], prefix: str) -> str:
     return next((p.split()[1] for p in packages if p.startswith(prefix) and len(p.split()) > 1), "unknown")
 
 
-def record_environment(results_dir: Path) -> None:
-    """What the last sweep ran on, for the report (which runs nothing itself)."""
+ENVIRONMENT_ROWS = 200  # the record keeps the newest rows: a make rerun adds one a study
+
+
+def record_environment(results_dir: Path, study: str) -> None:
+    """What each sweep of a study ran on, appended to the record (the report shows the newest row;
+    it runs nothing itself)."""
+    from driver import __version__
     packages = _command_output(["dpkg-query", "-W", "-f=${Package} ${Version}\n", "freefem++",
                                 "libmumps-seq-*", "libcholmod*", "libopenblas0-*"]).split("\n")
     cpu = next((ln.split(":", 1)[1].strip() for ln in _command_output(["cat", "/proc/cpuinfo"]).splitlines()
                 if ln.startswith("model name")), platform.machine())
-    env = {"date": time.strftime("%Y-%m-%d"),
+    env = {"date": time.strftime("%Y-%m-%d"), "study": study, "version": __version__,
            "commit": _command_output(["git", "-C", str(freefem.EDP_DIR), "rev-parse", "--short", "HEAD"]).strip()
            or "unknown",
            "solver code": freefem.edp_hash(),
@@ -312,7 +317,12 @@ def record_environment(results_dir: Path) -> None:
            "CPU": f"{cpu}, {cores()} cores"}
     target = results_dir / layout.ENVIRONMENT_FILE
     studytable.refuse_symlink(target, "environment record")
-    studytable.write_atomically(target, pd.DataFrame([env]).to_csv(index=False))
+    try:
+        earlier = pd.read_csv(target, dtype=str, keep_default_na=False) if target.is_file() else pd.DataFrame()
+    except (OSError, ValueError):
+        earlier = pd.DataFrame()  # an unreadable record is started anew
+    record = pd.concat([earlier, pd.DataFrame([env], dtype=str)], ignore_index=True).tail(ENVIRONMENT_ROWS)
+    studytable.write_atomically(target, record.reindex(columns=list(env)).to_csv(index=False))
 
 
 def report_unexpected(outcomes: list[Outcome], stream=sys.stderr, limit: int = 20) -> int:

@@ -8,6 +8,7 @@ import time
 import pandas as pd
 import pytest
 
+import driver
 from driver import studytable
 from driver.cases import Case
 from driver.errors import SweepError, TableError
@@ -195,3 +196,12 @@ def test_gathered_files_come_in_one_order_whatever_the_hash_seed(tmp_path, seed)
     gathered = pd.read_csv(tmp_path / "demo" / "profile.csv")
     assert list(gathered["case_id"]) == [c for c in "abcde" for _ in range(2)]
     assert list(gathered["r"]) == [0, 1] * 5
+
+
+def test_the_environment_record_is_appended_with_the_study_and_the_version(tmp_path):
+    # one row a study that ran, the package's version in each (it was one row, overwritten, and
+    # a non-editable install said only "commit unknown")
+    sweep("t", [TINY], tmp_path, jobs=1, timeout=120)
+    sweep("u", [TINY], tmp_path, jobs=1, timeout=120)
+    record = pd.read_csv(tmp_path / "sweep_environment.csv", dtype=str)
+    assert list(record["study"]) == ["t", "u"] and set(record["version"]) == {driver.__version__}
