@@ -27,7 +27,7 @@ from driver import freefem, layout, schema
 from driver.cases import Case
 from driver.errors import HertzError, OptionError, RejectedError
 from driver.processes import LOCK_FILE, Busy, CaseLock, children_waitable
-from driver.run import LOG_FILE, MAX_TIMEOUT, rejected, run_case
+from driver.run import LOG_FILE, MAX_TIMEOUT, UNANSWERED_LOG, rejected, run_case
 
 if TYPE_CHECKING:  # only annotations use it: hertz run does not load pandas
     import pandas as pd
@@ -116,8 +116,9 @@ def _run_single(case: Case, workdir: Path, timeout: float, extra: tuple[str, ...
             # a refused run leaves nothing behind: no folder, no log
             if candidate in missing:
                 shutil.rmtree(candidate, ignore_errors=True)
-            else:
-                for name in (LOG_FILE, LOCK_FILE):
+            else:  # (an earlier run's files came back with its log: the refused run's is set apart)
+                refused_log = UNANSWERED_LOG if (candidate / UNANSWERED_LOG).exists() else LOG_FILE
+                for name in (refused_log, LOCK_FILE):
                     (candidate / name).unlink(missing_ok=True)
             for folder in missing:
                 if folder != candidate:

@@ -256,7 +256,9 @@ class DaskExecutor:
         try:
             with CaseLock(workdir):
                 reap_leftover(workdir)  # a local sweep killed earlier may have left its solver here
-                clear_outputs(workdir)
+                # an answer replaces the earlier run's files; a run without one leaves them
+                if "summary.csv" in result["files"]:
+                    clear_outputs(workdir)
                 for name, data in result["files"].items():
                     if Path(name).name == name and not name.startswith("."):
                         _write_file(workdir / name, data)

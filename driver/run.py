@@ -13,8 +13,10 @@ import csv
 import math
 import os
 import re
+import shutil
 import statistics
 import subprocess
+import tempfile
 import threading
 import time
 import uuid
@@ -233,17 +235,65 @@ def run_case(case: Case, workdir: Path, timeout: float, study: str = "",
     return row
 
 
+EARLIER = ".earlier-"  # the folder an earlier run's files wait in while a new run runs
+UNANSWERED_LOG = "freefem.unanswered.log"  # the log of a run that gave no answer, beside the files it did not replace
+
+
+def earlier_files(workdir: Path) -> list[Path]:
+    return [p for p in workdir.iterdir() if (p.suffix in OUTPUT_SUFFIXES or p.name in (LOG_FILE, UNANSWERED_LOG))
+            and (p.is_file() or p.is_symlink())]
+
+
 def clear_outputs(workdir: Path) -> None:
     """Remove what an earlier run left: a file from it must not pass for this run's."""
-    for path in workdir.iterdir():
-        if path.suffix in OUTPUT_SUFFIXES or path.name in (LOG_FILE, PID_FILE):
-            if path.is_file() or path.is_symlink():
+    for path in earlier_files(workdir):
+        path.unlink()
+    (workdir / PID_FILE).unlink(missing_ok=True)
+
+
+def set_aside(workdir: Path) -> Path | None:
+    """Move what an earlier run left into a fresh folder of its own (a file from it must not pass
+    for this run's); settle() brings it back if this run gives no answer. A folder a killed driver
+    left is settled first."""
+    for left in workdir.glob(EARLIER + "*"):
+        settle(workdir, left)
+    (workdir / PID_FILE).unlink(missing_ok=True)
+    earlier = earlier_files(workdir)
+    if not earlier:
+        return None
+    aside = Path(tempfile.mkdtemp(prefix=EARLIER, dir=workdir))
+    for path in earlier:
+        path.rename(aside / path.name)
+    return aside
+
+
+def settle(workdir: Path, aside: Path | None) -> None:
+    """After a run: its answer (a summary.csv) replaces the earlier files; without one, the earlier
+    files come back whole, and this run's log is kept beside them as UNANSWERED_LOG."""
+    if aside is None or not aside.is_dir() or aside.is_symlink():
+        return
+    if not (workdir / "summary.csv").is_file():
+        for path in earlier_files(workdir):  # what the unanswered run left
+            if path.name == LOG_FILE:
+                path.replace(workdir / UNANSWERED_LOG)
+            else:
                 path.unlink()
+        for path in aside.iterdir():
+            if path.is_file() and not path.is_symlink() and path.name != UNANSWERED_LOG:
+                path.replace(workdir / path.name)
+    shutil.rmtree(aside, ignore_errors=True)
 
 
 def _run(case: Case, workdir: Path, timeout: float, columns: list[str], extra: tuple[str, ...]) -> dict:
     reap_leftover(workdir)
-    clear_outputs(workdir)
+    aside = set_aside(workdir)
+    try:
+        return _solve(case, workdir, timeout, columns, extra)
+    finally:
+        settle(workdir, aside)
+
+
+def _solve(case: Case, workdir: Path, timeout: float, columns: list[str], extra: tuple[str, ...]) -> dict:
     cmd = launcher() + freefem.command(case.args() + list(extra) + ["-out", str(workdir)])
     token = uuid.uuid4().hex
     env = freefem.freefem_env() | {MARKER: token}

@@ -158,7 +158,24 @@ def test_no_output_is_written_through_a_planted_link(tmp_path):
     # the run's files replace the links (a rename), and its parts folder is gone
     for name in ("summary.csv", "f_near.vtu"):
         assert not (out / name).is_symlink() and (out / name).stat().st_size > 1000, name
-    assert not (out / ".hertz-parts").exists()
+    assert not list(out.glob(".hertz-parts*"))
+
+
+def test_a_run_into_a_folder_another_run_is_writing_has_parts_of_its_own(tmp_path):
+    # two runs into one -out shared one parts folder: exit 8 with FreeFEM's trace, or a false "disk full"
+    out, outside = tmp_path / "out", tmp_path / "outside"
+    (out / ".hertz-parts.1").mkdir(parents=True)  # another run's, mid-write
+    (out / ".hertz-parts.1" / "summary.csv").write_text("theirs\n")
+    outside.mkdir()
+    (out / ".hertz-parts.2").symlink_to(outside)  # planted
+    stale = out / ".hertz-parts.9"  # a killed run's, two days old
+    stale.mkdir()
+    os.utime(stale, (time.time() - 2 * 86400,) * 2)
+    proc = run_limited(["-n", "8", "-out", str(out), "-vtk", str(out / "f.vtu")], file_kb=10**6)
+    assert proc.returncode in (0, 5), proc.stdout[-500:] + proc.stderr
+    assert (out / "summary.csv").stat().st_size > 1000 and (out / "f.vtu").is_file()
+    assert (out / ".hertz-parts.1" / "summary.csv").read_text() == "theirs\n" and not any(outside.iterdir())
+    assert sorted(p.name for p in out.glob(".hertz-parts*")) == [".hertz-parts.1", ".hertz-parts.2"]
 
 
 def test_a_failed_rerun_replaces_none_of_the_earlier_files(tmp_path):

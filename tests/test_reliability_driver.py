@@ -109,6 +109,38 @@ def test_a_forced_rerun_that_fails_keeps_the_answered_row_and_shows_the_failure(
     assert list(rerun["status"]) == ["timeout"]
 
 
+def _contents(folder: Path) -> dict[str, bytes]:
+    return {p.name: p.read_bytes() for p in folder.iterdir() if p.suffix == ".csv"}
+
+
+def test_a_forced_rerun_that_fails_keeps_the_answered_rows_files(tmp_path):
+    # the rows were kept, but the case folder had lost every file but the timed-out run's log
+    sweep("t", [TINY], tmp_path, jobs=1, timeout=120)
+    folder = next((tmp_path / "runs" / "t").iterdir())
+    before = _contents(folder)
+    assert "summary.csv" in before
+    sweep("t", [TINY], tmp_path, jobs=1, timeout=0.01, force=True)
+    assert _contents(folder) == before and (folder / "freefem.unanswered.log").is_file()
+    assert not list(folder.glob(".earlier-*"))
+
+
+def test_a_rerun_refused_or_cut_short_keeps_the_earlier_files(tmp_path):
+    out = tmp_path / "out"
+    first = api.solve(n=4, L=50.0, farfield="clamped", out=out)
+    assert first.status == "inaccurate"
+    before = _contents(out)
+    with pytest.raises(HertzError):
+        api.solve(n=4, L=50.0, farfield="clamped", d=0.6, out=out)  # refused: -d is at most R
+    assert _contents(out) == before and (out / "freefem.log").is_file()
+    assert not (out / "freefem.unanswered.log").exists()  # a refused run leaves nothing behind
+    cut = api.solve(n=4, L=50.0, farfield="clamped", out=out, timeout=0.01)
+    assert cut.status == "timeout" and _contents(out) == before
+    # an answer replaces them together: no earlier file passes for the new run's
+    again = api.solve(n=4, L=50.0, farfield="clamped", d=0.01, out=out)
+    assert again.status in ("converged", "inaccurate") and _contents(out) != before
+    assert not (out / "freefem.unanswered.log").exists()
+
+
 def test_prepare_keeps_the_answered_row_against_a_later_failure_and_says_so(tmp_path):
     path = tmp_path / "t.csv"
     columns = _write_table(path, [{"case_id": "a"}, {"case_id": "a", "status": "failed", "p0_fe": ""},
