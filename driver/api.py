@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any
 from driver import freefem, layout, schema
 from driver.cases import Case
 from driver.errors import HertzError, OptionError, RejectedError
+from driver.files import refuse_symlink
 from driver.processes import LOCK_FILE, Busy, CaseLock, children_waitable
 from driver.run import LOG_FILE, MAX_TIMEOUT, UNANSWERED_LOG, rejected, run_case
 
@@ -156,7 +157,11 @@ def solve_case(options: Mapping[str, object], timeout: float = DEFAULT_TIMEOUT,
             _check_out(paths["out"], prefix)
             row, files = _run_single(case, paths["out"], timeout, extra, unique=False)
         else:
-            single = layout.work_root(_folder(results, f"{prefix}results"), layout.SINGLE)
+            root = _folder(results, f"{prefix}results")
+            single = layout.work_root(root, layout.SINGLE)
+            # as a sweep does: a planted link on the way would send the run's files anywhere
+            for path in (root / layout.RUNS, single, single / case.case_id):
+                refuse_symlink(path, "work folder", OptionError)
             row, files = _run_single(case, single / case.case_id, timeout, extra, unique=True, fresh=fresh)
     if rejected(row):
         raise RejectedError(str(row["error"]))
@@ -194,6 +199,8 @@ def sweep(study: str | Path, *, cases: Iterable[Mapping[str, object]] | None = N
         if isinstance(cases, (str, bytes, Mapping)) or not isinstance(cases, Iterable):
             raise OptionError(f"cases must be a list of option dicts, got {type(cases).__name__} {cases!r:.80}")
         job = sweeps.Job(str(study), [case_of(c, str(study), f"cases[{k}]") for k, c in enumerate(cases)])
+        if not job.cases:
+            raise OptionError("cases is empty: give at least one option dict (cases=[{}] is the default scene)")
     elif isinstance(study, Path) or str(study).endswith((".toml", ".json")):
         job = sweeps.jobs_from(spec=layout.user_path(study), yes=yes)[0]
     else:

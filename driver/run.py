@@ -305,8 +305,10 @@ def _solve(case: Case, workdir: Path, timeout: float, columns: list[str], extra:
         with RUNNING.lock:  # registered before it can exit: reap_adopted leaves it to us
             # output to a file, not a pipe: a helper that keeps the pipe open would
             # hold a finished case until its timeout
+            # (restore_signals=False: SIGXFSZ stays ignored, as Python keeps it, so a write past a
+            # file-size limit fails and the solver says so with exit 4, where the signal killed it)
             proc = subprocess.Popen(cmd, cwd=workdir, stdout=log, stderr=subprocess.STDOUT,
-                                    env=env, start_new_session=True)
+                                    env=env, start_new_session=True, restore_signals=False)
             RUNNING.cases[token] = proc.pid
     (workdir / PID_FILE).write_text(f"{proc.pid} {token}\n")
     say, exited = _ECHO.get(), threading.Event()

@@ -4,6 +4,7 @@ address or row."""
 import os
 import signal
 import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -19,7 +20,7 @@ from driver.run import run_case
 from driver.studies import load_spec
 from driver.sweeps import sweep
 
-from conftest import REPO, cli, hertz, one_error_line
+from conftest import REPO, checkout_first, cli, hertz, one_error_line
 
 TINY = Case.of(n=4, L=50.0, farfield="clamped")  # ~0.1 s, inaccurate (an answer all the same)
 
@@ -163,7 +164,8 @@ def test_an_endless_spec_file_is_one_line_at_once(tmp_path):
                                             ({"n": 8}, "cases must be a list of option dicts"),
                                             (5, "cases must be a list of option dicts"),
                                             ([1], r"cases\[0\] must be a dict of options"),
-                                            ([{"n": 8}, "n"], r"cases\[1\] must be a dict of options")])
+                                            ([{"n": 8}, "n"], r"cases\[1\] must be a dict of options"),
+                                            ([], "cases is empty")])
 def test_cases_that_are_not_option_dicts_are_the_packages_error(tmp_path, cases, message):
     with pytest.raises(OptionError, match=message):
         api.sweep("x", cases=cases, results=tmp_path)
@@ -319,3 +321,25 @@ def test_a_report_reads_a_table_with_broken_rows_and_names_them(tmp_path):
     assert f"units.csv: line {rows + 1} set aside" in proc.stderr
     assert f"units.csv: line {rows + 2} set aside" in proc.stderr
     assert (tmp_path / "units.png").is_file()
+
+
+def test_run_refuses_a_planted_link_on_the_way_to_its_folder(tmp_path):
+    # a sweep refused it; hertz run wrote its case through it (exit 0)
+    victim = tmp_path / "victim"
+    victim.mkdir()
+    (tmp_path / "results").mkdir()
+    (tmp_path / "results" / "runs").symlink_to(victim)
+    proc = hertz("run", "--n", "4", cwd=tmp_path)
+    assert proc.returncode == 2 and "symbolic link" in one_error_line(proc) and not any(victim.iterdir())
+
+
+def test_a_file_size_limit_is_a_write_failure_that_keeps_the_earlier_files(tmp_path):
+    # SIGXFSZ killed the solver (a 'failed' row, 'killed by signal 25') after the files had been deleted
+    out = tmp_path / "out"
+    assert cli("run", "--n", "16", "--out", str(out)).returncode == 0
+    before = _contents(out)
+    command = f"ulimit -f 10; exec {sys.executable} -m driver run --n 16 --E 20 --out {out}"
+    proc = subprocess.run(["bash", "-c", command], cwd=REPO, capture_output=True, text=True, timeout=120,
+                          env=checkout_first(dict(os.environ)))
+    assert proc.returncode == 4 and "cannot write the output files" in proc.stderr, proc.stderr
+    assert _contents(out) == before
