@@ -129,14 +129,16 @@ def write_report(results_dir: Path, say: Callable[[str], None] = print) -> Path:
     if not any(len(t) for t in [*tables.values(), *own.values()]):
         raise ReportError(f"no study rows in {results_dir}: run 'make sweep' or 'hertz sweep --all --quick'")
     drawn = {}
-    for name, chart in CHARTS.items():
+    if not any(len(t) for t in tables.values()):
+        say("skipped the built-in charts: no built-in study rows here (make sweep, or hertz sweep --all --quick)")
+    for name, chart in CHARTS.items() if any(len(t) for t in tables.values()) else ():
         png = results_dir / f"{name}.png"
         try:
             drawn[name] = draw(chart, OWNERS.get(name), tables, results_dir, png)
         except charts.NoData as why:
             say(f"skipped {png.name}: {why}")
         except KeyError as column:
-            say(f"skipped {png.name}: column {column} missing in its table")
+            say(f"skipped {png.name}: its table lacks a column ({column.args[0] if column.args else column})")
 
     own_drawn = {}
     for name, table in own.items():
@@ -149,7 +151,7 @@ def write_report(results_dir: Path, say: Callable[[str], None] = print) -> Path:
         except charts.NoData as why:
             say(f"skipped {png.name}: {why}")
         except KeyError as column:
-            say(f"skipped {png.name}: column {column} missing in its table")
+            say(f"skipped {png.name}: its table lacks a column ({column.args[0] if column.args else column})")
 
     best = best_configurations(tables)
     counts = {name: len(t) for name, t in [*tables.items(), *own.items()]}

@@ -1,6 +1,8 @@
 """Adhesion (-w, -sigma0, -pulloff; edp/lib/methods/adhesion.idp and
 edp/lib/solve/pulloff.idp) against Maugis and Dugdale's exact solution and its
 JKR and DMT limits (driver/references/maugis.py, apart from the solver)."""
+import re
+
 import numpy as np
 import pytest
 
@@ -175,10 +177,28 @@ def test_a_contact_held_by_its_traction_alone_is_solved(solve):
 
 
 def test_a_narrow_zone_needs_its_own_limit(solve):
-    """-pulloff beyond lambda = 5 is refused with one line naming -sigma0's bound."""
+    """-pulloff beyond lambda = 5 is refused with one line naming -sigma0's window."""
     run = solve("-w", str(W), "-sigma0", "20", "-pulloff", "1", out=False)
     assert run.exit_code == 2
-    assert "-sigma0 at most" in run.stderr and len(run.stderr.strip().splitlines()) == 1
+    assert "-sigma0 from" in run.stderr and len(run.stderr.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("args", [("-w", "0.05", "-sigma0", "0.01"), ("-w", "0.05", "-sigma0", "1e4"),
+                                  ("-w", "0.05", "-sigma0", "30", "-pulloff", "1"), ("-w", "1e5", "-sigma0", "1"),
+                                  ("-w", "1e5", "-sigma0", "2e5")])
+def test_what_a_refusal_advises_is_accepted(solve, args):
+    # each bound advised a -sigma0 the other refused, and a -w too strong for any was not named
+    run = solve(*args, "-check", "1", out=False)
+    assert run.exit_code == 2, run.output
+    rest = [a for a in args[2:] if a not in ("-sigma0",)][1:]
+    window = re.search(r"-sigma0 from (\S+) to ([^\s:;()]+)", run.stderr)
+    if window:
+        middle = (float(window.group(1)) * float(window.group(2))) ** 0.5
+        ok = solve("-w", args[1], "-sigma0", repr(middle), *rest, "-check", "1", out=False)
+    else:
+        w = 0.9 * float(re.search(r"-w at most (\S+)$", run.stderr.strip()).group(1))
+        ok = solve("-w", repr(w), "-sigma0", repr(w / R), *rest, "-check", "1", out=False)
+    assert ok.exit_code == 0, ok.output
 
 
 @pytest.mark.parametrize("args, phrase", [
@@ -191,7 +211,8 @@ def test_a_narrow_zone_needs_its_own_limit(solve):
     (("-w", "0.1", "-sigma0", "1", "-method", "newton"), "-method lagrange"),
     (("-w", "0.1", "-sigma0", "1", "-Y", "1"), "not built yet"),
     (("-pulloff", "1"), "give -w and -sigma0"),
-    (("-w", "1e300", "-sigma0", "1"), "the interaction's range, must be at most R"),
+    (("-w", "1e300", "-sigma0", "1"), "-w 1e+300 is too strong"),
+    (("-w", "0.05", "-sigma0", "0.01"), "the interaction's range, must be at most R"),
     (("-w", "0.05", "-sigma0", "1e300"), "above 100"),
 ])
 def test_bad_adhesive_input_is_one_line(solve, args, phrase):

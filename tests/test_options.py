@@ -76,6 +76,11 @@ BAD_INPUTS = [
     (["-Rx", "0.5", "-Ry", "inf", "-model", "3d"], "-model"), (["-d", "5e-324"], "scale"),
     (["-P", "5e-324"], "scale"), (["-Rx", "0.5", "-Ry", "1e15", "-check", "1"], "-Rx"),
     (["-vtk", "/tmp/" + "x" * 250 + ".vtu"], "-vtk"),
+    # the option that sets the bound is named, and the scene as it is (a second adversarial pass)
+    (["-E1", "10", "-R2", "1e-6"], "-R2"), (["-start", "hertz", "-shape", "cone"], "got -shape cone"),
+    (["-E", "1e308"], "finite values stop below"), (["-kpen", "1.7e308"], "finite values stop below"),
+    # Uzawa stalled on a punch's graded edge below -gamma 50 (n = 32: 10, 20 and 30)
+    (["-shape", "punch", "-method", "uzawa", "-n", "32", "-gamma", "30"], "-gamma must be at least 50"),
 ]
 
 

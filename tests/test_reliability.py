@@ -1,6 +1,7 @@
 """No false convergence, no silent write failure, limits with clear messages (hertz.edp)."""
 import math
 import os
+import re
 import subprocess
 import time
 
@@ -55,6 +56,12 @@ def test_uzawa_at_a_hopeless_penalty_stops_early(solve):
     assert run.exit_code == 3 and run.summary["status"] == "stalled"
 
 
+def test_uzawa_on_a_punch_converges_from_the_least_penalty_it_takes(solve):
+    run = solve("-shape", "punch", "-method", "uzawa", "-n", "32", "-gamma", "50", timeout=120)
+    assert run.exit_code == 0 and run.summary["status"] == "converged", run.output
+    assert "face-lifts" not in str(run.summary["warnings"])
+
+
 def test_a_mesh_beyond_maxdof_is_refused_before_meshing(solve):
     start = time.perf_counter()
     run = solve("-n", "300", "-L", "1000")  # about 2 million dofs: minutes and gigabytes
@@ -87,6 +94,16 @@ def test_accuracy_stops_at_the_memory_and_says_so(tmp_path):
     run = run_memory_limited(["-accuracy", "1e-4", "-order", "1"], 450, tmp_path)
     assert run.returncode == 5, run.stdout[-500:] + run.stderr
     assert "stopped by the memory" in run.stderr and "ulimit -v" in run.stderr
+
+
+def test_a_soft_penalty_is_advised_only_a_penalty_the_scene_takes(solve):
+    # a film on a rigid base at nu = 1/2 was told "use -gamma 1e+08 or more", which it refuses
+    args = ("-t", "0.001", "-E2", "inf", "-nu", "0.5")
+    run = solve(*args, "-gamma", "1e6")
+    assert run.exit_code == 5 and "soft-penalty" in run.summary["warnings"]
+    top = float(re.search(r"use -method lagrange: this scene takes -gamma up to (\S+)\)", run.stderr).group(1))
+    assert solve(*args, "-gamma", repr(0.99 * top), "-check", "1").exit_code == 0
+    assert solve(*args, "-gamma", repr(1.01 * top), "-check", "1").exit_code == 2
 
 
 def test_a_converged_run_far_from_its_estimate_is_inaccurate(solve):
