@@ -30,7 +30,16 @@ from driver import files, freefem
 from driver.cases import Case
 from driver.errors import HertzError, SweepError
 from driver.processes import CaseLock, reap_leftover
-from driver.run import LOG_FILE, clear_outputs, empty_row, run_case
+from driver.run import (
+    LOG_FILE,
+    UNANSWERED_FOLDER,
+    answered_files,
+    clear_outputs,
+    clear_unanswered,
+    empty_row,
+    run_case,
+)
+from driver.schema import ANSWERED
 
 LOCAL_PREFIX = "local:"
 RETRIES = 2           # a task that raised runs again, on any worker
@@ -256,12 +265,20 @@ class DaskExecutor:
         try:
             with CaseLock(workdir):
                 reap_leftover(workdir)  # a local sweep killed earlier may have left its solver here
-                # an answer replaces the earlier run's files; a run without one leaves them
+                # an answer replaces the earlier run's files; a run without one leaves them, and
+                # one that is no answer after an answer goes to its own folder (as run.settle)
+                target = workdir
                 if "summary.csv" in result["files"]:
-                    clear_outputs(workdir)
+                    if row.get("status") in ANSWERED or not answered_files(workdir):
+                        clear_outputs(workdir)
+                        clear_unanswered(workdir)
+                    else:
+                        target = workdir / UNANSWERED_FOLDER
+                        clear_unanswered(workdir)
+                        target.mkdir()
                 for name, data in result["files"].items():
                     if Path(name).name == name and not name.startswith("."):
-                        _write_file(workdir / name, data)
+                        _write_file(target / name, data)
         except HertzError as exc:
             return failure_row(case, study, columns, str(exc))
         return row

@@ -237,6 +237,7 @@ def run_case(case: Case, workdir: Path, timeout: float, study: str = "",
 
 EARLIER = ".earlier-"  # the folder an earlier run's files wait in while a new run runs
 UNANSWERED_LOG = "freefem.unanswered.log"  # the log of a run that gave no answer, beside the files it did not replace
+UNANSWERED_FOLDER = "unanswered"  # the files of such a run (diverged, maxiter, ...), where it wrote any
 
 
 def earlier_files(workdir: Path) -> list[Path]:
@@ -267,21 +268,48 @@ def set_aside(workdir: Path) -> Path | None:
     return aside
 
 
+def answered_files(folder: Path) -> bool:
+    """The folder's summary.csv holds an answer (converged or inaccurate)."""
+    try:
+        with open(folder / "summary.csv", newline="") as f:
+            return next(csv.DictReader(f), {}).get("status") in schema.ANSWERED
+    except (OSError, csv.Error, UnicodeDecodeError):
+        return False
+
+
 def settle(workdir: Path, aside: Path | None) -> None:
-    """After a run: its answer (a summary.csv) replaces the earlier files; without one, the earlier
-    files come back whole, and this run's log is kept beside them as UNANSWERED_LOG."""
+    """After a run: its answer (a summary.csv) replaces the earlier files. A run without one, or
+    one that is no answer (diverged, maxiter, ...) after an earlier answer, never destroys it: the
+    earlier files come back whole, and this run's log is kept beside them as UNANSWERED_LOG (its
+    files, if it wrote any, in UNANSWERED_FOLDER)."""
     if aside is None or not aside.is_dir() or aside.is_symlink():
         return
-    if not (workdir / "summary.csv").is_file():
-        for path in earlier_files(workdir):  # what the unanswered run left
+    wrote = (workdir / "summary.csv").is_file()
+    if not wrote or (not answered_files(workdir) and answered_files(aside)):
+        unanswered = workdir / UNANSWERED_FOLDER
+        if wrote:
+            clear_unanswered(workdir)
+            unanswered.mkdir()
+        for path in earlier_files(workdir):  # what the run left
             if path.name == LOG_FILE:
                 path.replace(workdir / UNANSWERED_LOG)
+            elif wrote:
+                path.replace(unanswered / path.name)
             else:
                 path.unlink()
         for path in aside.iterdir():
             if path.is_file() and not path.is_symlink() and path.name != UNANSWERED_LOG:
                 path.replace(workdir / path.name)
+    else:  # an answer, or a first run: what an earlier unanswered run left goes
+        clear_unanswered(workdir)
     shutil.rmtree(aside, ignore_errors=True)
+
+
+def clear_unanswered(workdir: Path) -> None:
+    unanswered = workdir / UNANSWERED_FOLDER
+    if unanswered.is_symlink() or unanswered.is_file():
+        unanswered.unlink()
+    shutil.rmtree(unanswered, ignore_errors=True)
 
 
 def _run(case: Case, workdir: Path, timeout: float, columns: list[str], extra: tuple[str, ...]) -> dict:

@@ -8,6 +8,7 @@ import sys
 import time
 from pathlib import Path
 
+import pandas as pd
 import pytest
 from test_studytable import _write_table
 
@@ -140,6 +141,21 @@ def test_a_rerun_refused_or_cut_short_keeps_the_earlier_files(tmp_path):
     again = api.solve(n=4, L=50.0, farfield="clamped", d=0.01, out=out)
     assert again.status in ("converged", "inaccurate") and _contents(out) != before
     assert not (out / "freefem.unanswered.log").exists()
+
+
+def test_a_rerun_that_is_no_answer_keeps_the_earlier_answer_and_its_own_files_apart(tmp_path):
+    # a maxiter rerun's files had replaced a converged run's: a result that is not trustworthy
+    # never destroys results already written; its own files are data, kept apart
+    out = tmp_path / "out"
+    assert api.solve(n=8, out=out).status == "converged"
+    before = _contents(out)
+    failed = api.solve(n=8, E=20, maxit=1, out=out)
+    assert failed.status == "maxiter" and _contents(out) == before
+    kept = pd.read_csv(out / "unanswered" / "summary.csv")
+    assert kept["status"].iloc[0] == "maxiter" and kept["E"].iloc[0] == 20
+    # the next answer replaces both
+    assert api.solve(n=8, E=20, out=out).status == "converged"
+    assert _contents(out) != before and not (out / "unanswered").exists()
 
 
 def test_prepare_keeps_the_answered_row_against_a_later_failure_and_says_so(tmp_path):
