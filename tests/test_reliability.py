@@ -195,6 +195,25 @@ def test_a_run_into_a_folder_another_run_is_writing_has_parts_of_its_own(tmp_pat
     assert sorted(p.name for p in out.glob(".hertz-parts*")) == [".hertz-parts.1", ".hertz-parts.2"]
 
 
+def test_a_run_that_is_no_answer_keeps_an_earlier_answer_and_its_own_files_apart(tmp_path):
+    # a maxiter rerun's files replaced a converged run's; into an empty folder they are its data
+    out = tmp_path / "out"
+    first = run_limited(["-n", "8", "-out", str(out), "-vtk", str(out / "f.vtu")], file_kb=10**6)
+    assert first.returncode == 0, first.stderr
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+    again = run_limited(["-n", "8", "-E", "20", "-maxit", "1", "-out", str(out), "-vtk", str(out / "f.vtu")],
+                        file_kb=10**6)
+    assert again.returncode == 3 and "its files are in" in again.stderr, again.stderr
+    assert {p.name: p.read_bytes() for p in out.iterdir() if p.is_file()} == before
+    assert "maxiter" in (out / "unanswered" / "summary.csv").read_text()
+    assert (out / "unanswered" / "f.vtu").is_file()
+    fresh = run_limited(["-n", "8", "-E", "20", "-maxit", "1", "-out", str(tmp_path / "fresh")], file_kb=10**6)
+    assert fresh.returncode == 3 and "maxiter" in (tmp_path / "fresh" / "summary.csv").read_text()
+    # the next answer replaces both
+    assert run_limited(["-n", "8", "-E", "20", "-out", str(out)], file_kb=10**6).returncode == 0
+    assert not (out / "unanswered").exists() and (out / "summary.csv").read_bytes() != before["summary.csv"]
+
+
 def test_a_failed_rerun_replaces_none_of_the_earlier_files(tmp_path):
     out = tmp_path / "out"
     first = run_limited(["-n", "8", "-out", str(out), "-vtk", str(out / "f.vtu")], file_kb=10**6)
