@@ -225,3 +225,16 @@ def test_a_p2_off_axis_peak_read_where_its_levels_agree_is_still_covered(solve):
     from audit import truth
     true = truth(args, s)["p0"]
     assert true > 0.004 and s["est_err_p0"] >= 0.5 * true, (true, s["est_err_p0"])
+
+
+@pytest.mark.parametrize("control", [("-P", "0.01"), ("-d", "0.005")])
+def test_the_cylinders_depth_or_force_has_its_estimate(solve, control):
+    # it was NaN: a reported quantity without an estimate. The depth (under -P) or the force
+    # (under -d) is the domain's, so the truth is a run of the same domain at n = 128
+    scene = ("-model", "plane", "-Rx", "0.5", "-Ry", "inf", *control)
+    run = solve(*scene, "-n", "9", "-method", "newton")
+    fine = solve(*scene, "-n", "128", "-method", "lagrange").summary
+    column = "d_fe" if control[0] == "-P" else "F_fe"
+    truth = abs(run.summary[column] / fine[column] - 1)
+    assert run.exit_code == 0 and math.isfinite(run.summary["est_err_F"]), run.output
+    assert run.summary["est_err_F"] >= 0.5 * truth, (truth, run.summary["est_err_F"])
