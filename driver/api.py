@@ -193,11 +193,13 @@ def sweep(study: str | Path, *, cases: Iterable[Mapping[str, object]] | None = N
     the table are not run again unless force (or retry_failed for failed and
     timed-out ones). scheduler: a Dask address or local:N."""
     from driver import sweeps  # the sweep machinery only when a sweep is asked for
-    from driver.studies import case_of
+    from driver.studies import STUDIES, case_of
     results_dir = _folder(results, "results")
     if cases is not None:
         if isinstance(cases, (str, bytes, Mapping)) or not isinstance(cases, Iterable):
             raise OptionError(f"cases must be a list of option dicts, got {type(cases).__name__} {cases!r:.80}")
+        if str(study) in STUDIES:  # its table is the built-in study's: no foreign rows in it
+            raise OptionError(f"sweep('{study}', cases=...): '{study}' is a built-in study; name yours another way")
         job = sweeps.Job(str(study), [case_of(c, str(study), f"cases[{k}]") for k, c in enumerate(cases)])
         if not job.cases:
             raise OptionError("cases is empty: give at least one option dict (cases=[{}] is the default scene)")

@@ -15,6 +15,7 @@ from driver import __version__
 from driver.commands import NAMES
 from driver.commands.common import Parser
 from driver.errors import HertzError, error_line
+from driver.processes import Interrupted
 
 INTERRUPTED = 130  # 128 + SIGINT, as a shell reports it
 
@@ -47,9 +48,9 @@ def main(argv: list[str] | None = None) -> int:
     except HertzError as exc:
         print(error_line(str(exc)), file=sys.stderr)
         return 2
-    except KeyboardInterrupt:
+    except KeyboardInterrupt as exc:  # Ctrl-C, or SIGTERM and SIGHUP (processes.Interrupted)
         print(interrupted, file=sys.stderr)
-        return INTERRUPTED
+        return 128 + exc.signum if isinstance(exc, Interrupted) else INTERRUPTED
     except BrokenPipeError:
         # the reader went away (hertz run | head): not an error of the run's
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())

@@ -14,6 +14,7 @@ module changes nothing.
 """
 from __future__ import annotations
 
+import atexit
 import contextlib
 import ctypes
 import fcntl
@@ -230,3 +231,22 @@ def launcher() -> list[str]:
     # the solver dies with the thread that started it, whatever kills the driver
     setpriv = shutil.which("setpriv")
     return [setpriv, "--pdeathsig", "KILL", "--"] if setpriv else []
+
+
+class Interrupted(KeyboardInterrupt):
+    """SIGTERM or SIGHUP, handled like Ctrl-C."""
+    signum = int(signal.SIGINT)
+
+
+def _on_signal(signum, frame):  # noqa: ARG001
+    interrupted = Interrupted(f"signal {signum}")
+    interrupted.signum = signum  # the command exits 128 + signum, as a shell reports it
+    raise interrupted
+
+
+def install_signal_handlers() -> None:
+    """SIGTERM and SIGHUP end a command as Ctrl-C does: its cases killed, what it kept said, and an
+    earlier run's files brought back (a terminated hertz run had left them set aside)."""
+    for sig in (signal.SIGTERM, signal.SIGHUP):
+        signal.signal(sig, _on_signal)
+    atexit.register(RUNNING.kill_all)

@@ -35,6 +35,7 @@ MEMORY = "out-of-memory"  # hertz.edp's status for a mesh refused for its memory
 OUTPUT_SUFFIXES = (".csv", ".vtu")
 MAX_TIMEOUT = 1e6  # seconds (11.6 days); threading's timers overflow not far above 1e9
 SOLVER_WARNING = "hertz.edp: warning:"
+SOLVER_PROGRESS = "hertz.edp: progress:"  # a long run's levels as they end (edp/lib/messages.idp)
 
 # who is shown the solver's output as it comes (hertz run -v); set by the caller around
 # one run, in its own thread: a sweep's worker threads never see it

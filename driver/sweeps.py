@@ -12,10 +12,8 @@ cluster (executors.py).
 """
 from __future__ import annotations
 
-import atexit
 import os
 import platform
-import signal
 import subprocess
 import sys
 import tempfile
@@ -69,20 +67,6 @@ class Outcome:
     messages: list[str] = field(default_factory=list)
 
 
-class Interrupted(KeyboardInterrupt):
-    """SIGTERM or SIGHUP, handled like Ctrl-C."""
-
-
-def _on_signal(signum, frame):  # noqa: ARG001
-    raise Interrupted(f"signal {signum}")
-
-
-def install_signal_handlers() -> None:
-    for sig in (signal.SIGTERM, signal.SIGHUP):
-        signal.signal(sig, _on_signal)
-    atexit.register(RUNNING.kill_all)
-
-
 def plan(study: str, cases: list[Case], results_dir: Path, force: bool = False,
          retry_failed: bool = False) -> tuple[list[Case], list[str]]:
     """The cases still to run (costly first), after repairing the table; messages say
@@ -126,7 +110,7 @@ def jobs_from(names: list[str] | None = None, spec: Path | None = None, quick: b
     if not names:
         raise SweepError("name at least one study, or use --all or --spec")
     jobs = []
-    for name in names:
+    for name in dict.fromkeys(names):  # a name given twice is swept once (its lock is held once)
         if name not in STUDIES:
             raise SweepError(f"unknown study '{name}'; known: {', '.join(STUDIES)}")
         study = STUDIES[name]

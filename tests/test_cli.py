@@ -38,6 +38,9 @@ def test_version():
     (["run", "--kpen", "-1"], "--kpen must be a number in (0, inf), got '-1'"),
     (["run", "--model", "../../../../../victim"], "--model must be one of auto, axi, plane, 3d"),
     (["run", "--check", "1"], "unrecognized arguments"),
+    # a second --d won silently; --version after a command was suggested as itself
+    (["curve", "--d", "0.005:0.04:3", "--out", "c", "--d", "0.01:0.02:2"], "--d is given twice"),
+    (["run", "--version"], "--version goes before the command (hertz --version)"),
 ])
 def test_bad_arguments_are_one_line_and_exit_2(tmp_path, args, words):
     proc = hertz(*args, "--results", str(tmp_path / "results"), cwd=tmp_path)
@@ -126,6 +129,17 @@ def test_ctrl_c_says_what_the_command_kept(monkeypatch, command, says):
     lines = proc.stderr.strip().splitlines()
     assert proc.returncode == 130 and len(lines) == 1 and lines[0].startswith("interrupted: "), proc.stderr
     assert says in proc.stderr and (command == "sweep") == ("resume" in proc.stderr), proc.stderr
+
+
+def test_a_long_run_shows_its_levels_as_they_end(tmp_path):
+    # a 3D hertz run printed nothing for 49 s; a run under 2 s stays quiet (the default's stderr is empty)
+    proc = cli("run", "--n", "100", "--results", str(tmp_path))
+    assert proc.returncode == 0, proc.stderr
+    line = r"^hertz\.edp: progress: level 2, \d+ dofs: converged after \d+ iterations \(\d"
+    assert re.search(line, proc.stderr, re.M), proc.stderr
+    quiet = cli("run", "--n", "8", "--results", str(tmp_path))
+    assert "progress" not in quiet.stderr and cli("run", "--n", "100", "-q", "--results",
+                                                   str(tmp_path)).stderr == ""
 
 
 def test_run_help_lists_hertz_edp_options():

@@ -81,6 +81,8 @@ BAD_INPUTS = [
     (["-E", "1e308"], "finite values stop below"), (["-kpen", "1.7e308"], "finite values stop below"),
     # Uzawa stalled on a punch's graded edge below -gamma 50 (n = 32: 10, 20 and 30)
     (["-shape", "punch", "-method", "uzawa", "-n", "32", "-gamma", "30"], "-gamma must be at least 50"),
+    # -maxdof at the top of its range: "raise -maxdof" was advised
+    (["-check", "1", "-model", "3d", "-n", "400", "-maxdof", "1e8"], "lower -n"),
 ]
 
 

@@ -106,6 +106,36 @@ def test_a_soft_penalty_is_advised_only_a_penalty_the_scene_takes(solve):
     assert solve(*args, "-gamma", repr(1.01 * top), "-check", "1").exit_code == 2
 
 
+@pytest.mark.parametrize("args, cure", [
+    (("-w", "0.05", "-sigma0", "5", "-order", "1"), "refine -n"),   # -accuracy is refused with -w
+    (("-method", "fixedpoint", "-gamma", "0.1", "-n", "3"), "use -method lagrange or newton"),
+])
+def test_a_warning_advises_only_what_the_scene_takes(solve, args, cure):
+    # both advised -accuracy, which they refuse; the fixed point was told to stiffen into divergence
+    run = solve(*args)
+    warnings = [line for line in run.stderr.splitlines() if "warning" in line]
+    assert run.exit_code == 5 and any(cure in line for line in warnings), run.stderr
+    assert not any("-accuracy" in line or "-gamma 100" in line for line in warnings), run.stderr
+
+
+def test_a_refused_output_path_leaves_no_folder_behind(tmp_path):
+    # a name too long for the file system left the folders on its way
+    for option, name in (("-out", "z" * 300), ("-vtk", "z" * 300 + ".vtu")):
+        proc = run_limited([option, str(tmp_path / "q1" / "q2" / name)], file_kb=10**6)
+        assert proc.returncode == 2 and option in proc.stderr, proc.stderr
+        assert not (tmp_path / "q1").exists()
+
+
+def test_a_rerun_of_another_branch_leaves_no_file_of_the_earlier(tmp_path):
+    # 3D's outline.csv and profile_y.csv stayed beside a 2D rerun's summary
+    out = tmp_path / "out"
+    assert run_limited(["-model", "3d", "-n", "3", "-out", str(out)], file_kb=10**6).returncode in (0, 5)
+    assert (out / "outline.csv").is_file()
+    assert run_limited(["-n", "8", "-out", str(out)], file_kb=10**6).returncode == 0
+    assert sorted(p.name for p in out.iterdir()) == ["axis.csv", "history.csv", "path.csv", "profile.csv",
+                                                      "summary.csv"]
+
+
 def test_a_converged_run_far_from_its_estimate_is_inaccurate(solve):
     run = solve("-n", "4", "-L", "20", "-farfield", "clamped")  # the clamped boundary alone costs 5%
     assert run.exit_code == 5

@@ -21,7 +21,7 @@ from driver.run import run_case
 from driver.studies import load_spec
 from driver.sweeps import sweep
 
-from conftest import REPO, checkout_first, cli, hertz, one_error_line
+from conftest import REPO, checkout_first, cli, hertz, one_error_line, solvers_under
 
 TINY = Case.of(n=4, L=50.0, farfield="clamped")  # ~0.1 s, inaccurate (an answer all the same)
 
@@ -186,6 +186,15 @@ def test_cases_that_are_not_option_dicts_are_the_packages_error(tmp_path, cases,
     with pytest.raises(OptionError, match=message):
         api.sweep("x", cases=cases, results=tmp_path)
     assert not list(tmp_path.iterdir())
+
+
+def test_a_built_in_studys_table_takes_no_cases_of_the_callers(tmp_path):
+    # sweep("units", cases=...) appended a foreign row to units.csv, which a spec named so is refused
+    with pytest.raises(OptionError, match="'units' is a built-in study"):
+        api.sweep("units", cases=[{"n": 8}], results=tmp_path)
+    assert not list(tmp_path.iterdir())
+
+
 
 
 @pytest.mark.parametrize("results", [5, None, 1.5, ""])
@@ -359,3 +368,22 @@ def test_a_file_size_limit_is_a_write_failure_that_keeps_the_earlier_files(tmp_p
                           env=checkout_first(dict(os.environ)))
     assert proc.returncode == 4 and "cannot write the output files" in proc.stderr, proc.stderr
     assert _contents(out) == before
+
+
+def test_a_terminated_run_says_so_and_keeps_the_earlier_files(tmp_path, fake_solver):
+    # SIGTERM ended hertz run with 143 and no line, its earlier files left in a hidden .earlier-*
+    out = tmp_path / "out"
+    command = [sys.executable, "-m", "driver", "run", "--n", "4", "--L", "50", "--farfield", "clamped",
+               "--out", str(out), "-q"]
+    env = checkout_first(dict(os.environ))
+    assert subprocess.run(command, cwd=REPO, env=env | {"FAKE_MODE": ""}, capture_output=True).returncode == 5
+    before = _contents(out)
+    proc = subprocess.Popen(command, cwd=REPO, env=env | {"FAKE_MODE": "slow", "FAKE_DELAY": "30"},
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 30
+    while not solvers_under(tmp_path) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=30)
+    assert proc.returncode == 143 and err.strip().startswith("interrupted:"), err
+    assert _contents(out) == before and not list(out.glob(".earlier-*")) and not solvers_under(tmp_path)

@@ -44,3 +44,14 @@ def test_the_series_are_the_options_that_vary_besides_n(own_results):
     from driver.charts.own_study import series_of
     rows = pd.read_csv(own_results / "soft.csv")
     assert sorted(series_of(rows).unique()) == ["method lagrange", "method newton"]
+
+
+def test_a_study_without_a_reference_is_charted_by_its_estimate(tmp_path):
+    # coated bodies (and adhesion) have no true error: the report crashed on the log axis of NaNs
+    (tmp_path / "coat.toml").write_text('name = "coat"\n[base]\nt = 0.05\nE2 = 100\n[grid]\nn = [8, 16]\n')
+    results = tmp_path / "results"
+    assert cli("sweep", "--spec", str(tmp_path / "coat.toml"), "--results", str(results),
+               "--no-progress").returncode == 0
+    proc = cli("report", "--results", str(results))
+    assert proc.returncode == 0 and "Traceback" not in proc.stderr, proc.stderr
+    assert (results / "coat.png").read_bytes().startswith(b"\x89PNG")

@@ -205,3 +205,9 @@ def test_the_environment_record_is_appended_with_the_study_and_the_version(tmp_p
     sweep("u", [TINY], tmp_path, jobs=1, timeout=120)
     record = pd.read_csv(tmp_path / "sweep_environment.csv", dtype=str)
     assert list(record["study"]) == ["t", "u"] and set(record["version"]) == {driver.__version__}
+
+
+def test_a_study_named_twice_is_swept_once():
+    # 'hertz sweep units units' said another sweep was writing units.csv (its own second lock)
+    from driver.sweeps import jobs_from
+    assert [job.study for job in jobs_from(names=["plane", "units", "plane"], quick=True)] == ["plane", "units"]

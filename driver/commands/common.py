@@ -44,7 +44,8 @@ class Parser(argparse.ArgumentParser):
         self.exit(2, error_line(f"{message}{self._suggestion(message)} (see {where} --help)") + "\n")
 
     def _suggestion(self, message: str) -> str:
-        parsers = [p for p in (self, self.chosen) if p is not None]
+        # after a command, only its own options are taken (hertz --version is the program's)
+        parsers = [self.chosen] if self.chosen is not None else [self]
         if message.startswith("unrecognized arguments:"):
             known = [name for p in parsers for name in p._option_string_actions if name.startswith("--")]
             typed = [word.split("=", 1)[0] for word in message.split(":", 1)[1].split() if word.startswith("--")]
@@ -53,6 +54,8 @@ class Parser(argparse.ArgumentParser):
             from driver.commands import NAMES
             known, typed = list(NAMES), [match.group(1)] if match else []
         for word in typed:
+            if word in self._option_string_actions and word not in known:
+                return f"; {word} goes before the command (hertz {word})"
             close = difflib.get_close_matches(word, known, n=1)
             if close:
                 return f"; did you mean {close[0]}?"

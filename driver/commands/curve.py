@@ -24,7 +24,7 @@ import sys
 from pathlib import Path
 
 from driver import freefem, layout
-from driver.commands.common import add_solver_options, add_talk, add_timeout, positive, shown, solver_values
+from driver.commands.common import Once, add_solver_options, add_talk, add_timeout, positive, shown, solver_values
 from driver.errors import HertzError, OptionError
 
 HELP = "an indentation curve: --d or --P START:STOP:N; writes curve.csv (h, P, S, a, A, H, Er) and curve.png"
@@ -56,8 +56,9 @@ def points(start: float, stop: float, count: int) -> list[float]:
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     control = parser.add_mutually_exclusive_group(required=True)
-    control.add_argument("--d", type=span, metavar="START:STOP:N", help="N depths from START to STOP")
-    control.add_argument("--P", type=span, metavar="START:STOP:N", help="N loads from START to STOP")
+    # (a group's add_argument is argparse's own: Once is named here, so a second --d is refused)
+    control.add_argument("--d", type=span, metavar="START:STOP:N", help="N depths from START to STOP", action=Once)
+    control.add_argument("--P", type=span, metavar="START:STOP:N", help="N loads from START to STOP", action=Once)
     parser.add_argument("--out", type=layout.user_path, required=True, metavar="DIR",
                         help=f"folder of {CSV}, {PNG} and the cases (new, or an earlier curve's)")
     parser.add_argument("--jobs", type=positive(int, 4096), default=None,
@@ -120,6 +121,8 @@ def draw(table, rows, png: Path) -> Path:
 
 
 def handle(args: argparse.Namespace) -> int:
+    from driver.processes import install_signal_handlers
+    install_signal_handlers()  # SIGTERM and SIGHUP end it as Ctrl-C does
     from driver import api, schema, studytable
     chosen = cases(args)
     say = (lambda line: None) if args.quiet else (lambda line: print(line, file=sys.stderr, flush=True))

@@ -28,9 +28,15 @@ def say(line: str) -> None:
 
 
 def handle(args: argparse.Namespace) -> int:
+    from driver.processes import install_signal_handlers
+    install_signal_handlers()  # SIGTERM and SIGHUP end it as Ctrl-C does
     from driver.api import solve_case
-    from driver.run import LOG_FILE, MEMORY, echoing, solver_warnings
-    with echoing(say) if args.verbose else contextlib.nullcontext():
+    from driver.run import LOG_FILE, MEMORY, SOLVER_PROGRESS, echoing, solver_warnings
+
+    def progress(line: str) -> None:  # a long run's levels, as they end
+        if line.startswith(SOLVER_PROGRESS):
+            say(line)
+    with echoing(say if args.verbose else progress) if not args.quiet else contextlib.nullcontext():
         result = solve_case(solver_values(args), args.timeout, args.results, prefix="--")
     clean = {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in result.row.items()}
     if args.json:

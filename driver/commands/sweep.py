@@ -63,7 +63,7 @@ def handle(args: argparse.Namespace) -> int:
               "and their wall_time (column jobs records it) will grow", file=sys.stderr)
     # orphans of this sweep's cases come to this process, which kills and reaps them
     processes.become_subreaper()
-    sweeps.install_signal_handlers()
+    processes.install_signal_handlers()
     start = time.perf_counter()
     try:
         outcomes = sweeps.run_studies(jobs_list, args.results, jobs, args.timeout, args.force,
