@@ -83,7 +83,7 @@ MUTATIONS = [
              "real peakPairN = 10;", "real peakPairN = 1e9;",
              ["tests/test_estimate.py::test_the_former_false_alarms_converge_within_their_promise"]),
     Mutation("estimate: a cusp's floor whatever its size", "edp/lib/solve/estimate.idp",
-             "*min(1., sqrt(cuspSize(profileExponent)/cuspSize(1.5)))", "",
+             "*cuspFactor(profileExponent)", "",
              ["tests/test_estimate.py::test_the_former_false_alarms_converge_within_their_promise"]),
     Mutation("estimate: P2's off-axis peak without its floor", "edp/lib/solve/estimate.idp",
              "      estimatedError[k] = max(estimatedError[k], 0.07/n);", "",
