@@ -33,6 +33,8 @@ EXCEPTIONS = {
     r"^\w+: hertz bench$": "the timing benchmark: many minutes (make bench)",
     r"^\w+: make mutate$": "runs tests once per mutation: about 25 minutes",
     r"^\w+: make audit$": "510 random scenes, 10 of them 3D: several minutes (test_audit.py runs a small draw)",
+    r"^\w+: make sweep-quick$": "the quick studies, which the quick_results fixture sweeps through the same "
+                                 "run_studies (tests/conftest.py): 70 s more",
     r"^\w+: make rerun$": "recomputes every study from scratch: hours on 2 cores",
     r"^\w+: dask scheduler": "starts a server that runs until stopped (test_dask_backend runs a scheduler and workers)",
     r"tcp://host:8786": "host stands for the reader's own scheduler",

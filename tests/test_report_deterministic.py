@@ -8,8 +8,6 @@ from pathlib import Path
 
 import pytest
 
-from driver.report import write_report
-
 from conftest import REPO, cli
 
 # PNG chunks that carry text or a time: a chart holds none of them
@@ -45,16 +43,14 @@ def png_chunks(data: bytes) -> list[bytes]:
 
 
 @pytest.mark.slow
-def test_the_report_drawn_twice_from_the_committed_tables_is_the_same_bytes(tmp_path):
-    first, second = (_committed_tables(tmp_path / name) for name in ("first", "second"))
-    # one in a fresh process as `make report` runs it, one in this process
+def test_the_report_drawn_from_the_committed_tables_is_the_same_bytes(tmp_path):
+    # drawn in a fresh process as `make report` runs it; the committed report was drawn by another
+    # (make rerun), so equal bytes are a report drawn twice alike (drawing it twice here cost 20 s)
+    first = _committed_tables(tmp_path / "first")
     proc = cli("report", "--results", str(first))
     assert proc.returncode == 0, proc.stderr
-    write_report(second, say=lambda note: None)
-    drawn, again = _outputs(first), _outputs(second)
+    drawn = _outputs(first)
     assert "REPORT.md" in drawn and sum(name.endswith(".png") for name in drawn) >= 10, sorted(drawn)
-    assert sorted(drawn) == sorted(again)
-    assert [name for name in drawn if drawn[name] != again[name]] == []
     for name, data in drawn.items():
         if name.endswith(".png"):
             assert VARIABLE_CHUNKS.isdisjoint(png_chunks(data)), name
@@ -64,4 +60,5 @@ def test_the_report_drawn_twice_from_the_committed_tables_is_the_same_bytes(tmp_
     assert [name for name in drawn if drawn[name] != committed[name]] == []
     report = drawn["REPORT.md"].decode()
     assert not re.search(r"\d\d:\d\d:\d\d|\d{4}-\d\d-\d\dT\d\d", report), "a time of day in REPORT.md"
-    assert "matplotlib" in report and "Sweep: date" in report  # the versions and the sweep's own record stay
+    # the versions and the sweep's own record stay
+    assert "matplotlib" in report and "Sweep (the newest): date" in report
