@@ -38,7 +38,7 @@ bench:                            ## timings: medians of interleaved runs, peers
 # one pytest worker a core, each taking whole test files: a file's shared runs and clones stay in one worker
 TEST_WORKERS = -n $(JOBS) --dist loadfile
 
-test:                             ## the whole test suite, as CI runs it (10 to 12 minutes on 2 cores; writes nothing tracked)
+test:                             ## the whole test suite, as CI runs it (about 10.5 minutes on 2 cores; writes nothing tracked)
 	$(PYTHON) -m pytest -q $(TEST_WORKERS) tests
 
 test-fast:                        ## the quick tier for the edit-run loop: every test not marked slow
